@@ -1,0 +1,164 @@
+"""Radiation memory: impulse responses against a closed form, fits that recover a known system, passivity repair,
+and the 1-DOF agreement of convolution, state space and the exact frequency-domain solution."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from wecss.radiation import (
+    FitSettings,
+    RadiationConvolution,
+    RadiationStateSpace,
+    enforce_passivity,
+    filon_cosine_weights,
+    fit_radiation,
+    impulse_response,
+    passivity_grid,
+)
+from wecss.waves import Jonswap, excitation_coefficients, irregular
+
+from .analytic import analytic_hydro, analytic_kernel, known_system, response
+
+
+@pytest.fixture(scope="module")
+def hydro():
+    return analytic_hydro(np.arange(0.05, 100.0001, 0.05))
+
+
+@pytest.fixture(scope="module")
+def irf(hydro):
+    return impulse_response(hydro)
+
+
+def test_filon_weights_are_exact_for_piecewise_linear_functions() -> None:
+    omega = np.array([0.0, 0.3, 1.0, 1.1, 4.0])
+    values = np.array([0.0, 2.0, -1.0, 0.5, 0.2])
+    for t in (0.0, 0.7, 13.0):
+        fine = np.linspace(0.0, 4.0, 400001)
+        direct = np.trapezoid(np.interp(fine, omega, values) * np.cos(fine * t), fine)
+        assert filon_cosine_weights(omega, np.array([t]))[0] @ values == pytest.approx(direct, abs=1e-9)
+
+
+def test_impulse_response_matches_closed_form(irf) -> None:
+    exact = analytic_kernel(irf.time)
+    peak = np.max(np.abs(exact), axis=0)
+    error = np.abs(irf.kernel - exact) / peak
+    assert np.max(error[0]) < 1e-3  # K(0), with the fitted tail beyond 100 rad/s
+    assert np.max(error[irf.time > 0.2]) < 5e-4
+    np.testing.assert_allclose(irf.kernel[0], irf.k0_integral, rtol=1e-12)  # K(0) = (2/pi) int B
+    assert irf.time[-1] <= np.pi / 0.05 + 1e-9
+    assert np.all(irf.truncation_time > 1.0) and np.all(irf.truncation_time < irf.time[-1])
+    with pytest.raises(ValueError, match="exceeds pi / d_omega"):
+        impulse_response(analytic_hydro(np.arange(0.05, 20.0001, 0.05)), t_max=100.0)
+
+
+@pytest.mark.parametrize("method", ["prony", "era", "era-mimo"])
+def test_fits_recover_the_known_system(hydro, irf, method: str) -> None:
+    fit = fit_radiation(hydro, FitSettings(method=method), irf=irf)
+    report = fit.report
+    assert report.attrs["targets_met"] == 1
+    assert report.attrs["stable"] == 1 and report.attrs["passivity_margin"] >= 0
+    # the true system: 6 states (3 oscillatory modes); per-entry fits realise each coupling separately
+    expected_states = 6 if method == "era-mimo" else 4 + 4 + 2 * 2
+    assert fit.model.n_states == expected_states
+    a, b, c = known_system()
+    omega = np.linspace(0.1, 30, 300)
+    exact = response(a, b, c, omega)
+    exact = 0.5 * (exact + np.swapaxes(exact, 1, 2))
+    np.testing.assert_allclose(fit.model.frequency_response(omega), exact, atol=2e-3 * np.abs(exact).max())
+
+
+def test_non_passive_fit_is_detected_and_repaired(hydro) -> None:
+    a, b, c = known_system()
+    bad = c.copy()
+    bad[1, 4] *= -3.0  # flips the sign of one mode's residue on a diagonal entry: Re K_hat < 0 somewhere
+    model = RadiationStateSpace(a, b, bad, ("p__Heave", "q__Heave"))
+    grid = passivity_grid(100.0)
+    assert model.passivity(grid).min() < 0
+    repaired, report = enforce_passivity(model, grid)
+    assert report.margin_before < 0 <= repaired.passivity(grid).min()
+    assert report.passivity_iterations >= 1 and "restored passivity" in str(report)
+    assert np.array_equal(repaired.A, model.A) and np.array_equal(repaired.B, model.B)
+
+
+def test_one_dof_convolution_state_space_and_frequency_domain_agree(hydro, irf) -> None:
+    """Heave of body p with a linear damper in a periodic irregular sea: three independent solutions."""
+    one = hydro.select(bodies=["p"])
+    irf1 = impulse_response(one)
+    fit = fit_radiation(one, irf=irf1)
+    ds = one.dataset
+    mass, a_inf, stiffness, pto = 100.0, float(ds.added_mass_inf.values[0, 0]), 1000.0, 150.0
+    waves = irregular(Jonswap(0.1, 2.0, 3.3), d_omega=2 * np.pi / 64.0, omega_max=12.0, seed=4, energy_threshold=0.0)
+    x = excitation_coefficients(one, waves.omega)[0] * waves.amplitude
+    # exact steady state: (-w^2 (m + A) + i w (B + c) + K) X = F
+    a_w = np.interp(waves.omega, one.omega, ds.added_mass.values[:, 0, 0])
+    b_w = np.interp(waves.omega, one.omega, ds.radiation_damping.values[:, 0, 0])
+    z = -(waves.omega**2) * (mass + a_w) + 1j * waves.omega * (b_w + pto) + stiffness
+    period = 64.0
+    t = np.arange(0.0, 3 * period, 0.01)
+    force = np.real(np.exp(1j * np.outer(t, waves.omega)) @ x)
+    exact = np.real(np.exp(1j * np.outer(t, waves.omega)) @ (x / z))
+    last = t >= 2 * period  # after the transient
+
+    # state space, integrated with DOP853
+    model = fit.model
+
+    def rhs(tt: float, y: np.ndarray) -> np.ndarray:
+        pos, vel, states = y[0], y[1], y[2:]
+        f = np.real(np.exp(1j * tt * waves.omega) @ x)
+        acc = (f - stiffness * pos - pto * vel - (model.C @ states)[0]) / (mass + a_inf)
+        return np.concatenate([[vel, acc], model.A @ states + model.B[:, 0] * vel])
+
+    sol = solve_ivp(rhs, (0, t[-1]), np.zeros(2 + model.n_states), t_eval=t, method="DOP853", rtol=1e-9, atol=1e-12)
+    ss = sol.y[0]
+
+    # convolution, with a second-order scheme on the same step (Newmark average acceleration)
+    dt = t[1] - t[0]
+    conv = RadiationConvolution(irf1, dt)
+    pos = np.zeros(t.size)
+    vel, acc = 0.0, 0.0
+    for n in range(1, t.size):
+        # implicit trapezoid: solve for v_{n} with the newest memory term inside
+        k0 = conv.newest[0, 0]
+        hist = conv.history[0]
+        m_eff = mass + a_inf
+        p_prev = pos[n - 1]
+        # x_n = x + dt/2 (v + v_n); a_n = 2 (v_n - v)/dt - a
+        lhs = m_eff * 2 / dt + pto - k0 + stiffness * dt / 2
+        rhs_ = force[n] + hist - stiffness * (p_prev + dt / 2 * vel) + m_eff * (2 * vel / dt + acc)
+        v_new = rhs_ / lhs
+        acc = 2 * (v_new - vel) / dt - acc
+        pos[n] = p_prev + dt / 2 * (vel + v_new)
+        vel = v_new
+        conv.push(np.array([vel]))
+    rms = np.sqrt(np.mean(exact[last] ** 2))
+    err_ss = np.sqrt(np.mean((ss[last] - exact[last]) ** 2)) / rms
+    err_conv = np.sqrt(np.mean((pos[last] - exact[last]) ** 2)) / rms
+    print(f"1-DOF heave: RMS error state space {err_ss:.2e}, convolution {err_conv:.2e}")
+    assert err_ss < 5e-3
+    assert err_conv < 5e-3
+
+
+def test_cache_returns_the_same_fit(hydro, tmp_path, monkeypatch) -> None:
+    monkeypatch.setenv("WECSS_CACHE_DIR", str(tmp_path))
+    first = fit_radiation(hydro, cache=True)
+    files = list((tmp_path / "radiation").glob("*.nc"))
+    assert len(files) == 1
+    second = fit_radiation(hydro, cache=True)
+    np.testing.assert_array_equal(second.model.A, first.model.A)
+    np.testing.assert_array_equal(second.model.C, first.model.C)
+    assert second.report.attrs["n_states"] == first.report.attrs["n_states"]
+    other = fit_radiation(hydro, FitSettings(rms_tol=0.02), cache=True)
+    assert other.model.n_states > 0 and len(list((tmp_path / "radiation").glob("*.nc"))) == 2
+
+
+def test_fit_plot(hydro, irf) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from wecss.radiation import plot_fit
+
+    fig = plot_fit(fit_radiation(hydro, irf=irf))
+    assert len(fig.axes) == 2

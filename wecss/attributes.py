@@ -1,0 +1,84 @@
+"""The one table of ``long_name`` and ``units`` for every variable and coordinate wecss writes.
+
+Datasets made by wecss take their CF-style attributes from :data:`VARIABLE_ATTRS` through
+:func:`apply_attrs`, so the same name always carries the same meaning and units.
+Translations and rotations are kept apart: no attribute ever says "m or rad".
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Mapping
+
+import xarray as xr
+
+VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
+    # coordinates
+    "omega": {"long_name": "angular frequency", "units": "rad/s"},
+    "wave_direction": {"long_name": "direction of wave propagation, from +x towards +y", "units": "rad"},
+    "radiating_dof": {"long_name": "degree of freedom of the moving body (body__Dof)"},
+    "influenced_dof": {"long_name": "degree of freedom on which the force acts (body__Dof)"},
+    "body": {"long_name": "body name"},
+    "axis": {"long_name": "Cartesian axis"},
+    "axis_col": {"long_name": "Cartesian axis (second index of a tensor)"},
+    # hydrodynamic database
+    "added_mass": {
+        "long_name": "radiation added mass A(omega)",
+        "units": "kg, kg m, kg m^2 (translation-translation, translation-rotation, rotation-rotation)",
+    },
+    "radiation_damping": {
+        "long_name": "radiation damping B(omega)",
+        "units": "N s/m, N s, N m s/rad (translation-translation, translation-rotation, rotation-rotation)",
+    },
+    "added_mass_inf": {
+        "long_name": "infinite-frequency added mass A_inf",
+        "units": "kg, kg m, kg m^2 (translation-translation, translation-rotation, rotation-rotation)",
+    },
+    "added_mass_zero": {
+        "long_name": "zero-frequency added mass A_0",
+        "units": "kg, kg m, kg m^2 (translation-translation, translation-rotation, rotation-rotation)",
+    },
+    "excitation": {
+        "long_name": "wave excitation force per unit wave amplitude, Re[X exp(+i omega t)]",
+        "units": "N/m (translations), N m/m (rotations)",
+    },
+    "froude_krylov": {
+        "long_name": "Froude-Krylov force per unit wave amplitude, Re[X exp(+i omega t)]",
+        "units": "N/m (translations), N m/m (rotations)",
+    },
+    "diffraction": {
+        "long_name": "diffraction force per unit wave amplitude, Re[X exp(+i omega t)]",
+        "units": "N/m (translations), N m/m (rotations)",
+    },
+    "hydrostatic_stiffness": {
+        "long_name": "linear stiffness of the hydrostatic pressure force (buoyancy only, no gravity)",
+        "units": "N/m, N, N m/rad (translation-translation, translation-rotation, rotation-rotation)",
+    },
+    "mass": {"long_name": "body mass", "units": "kg"},
+    "inertia": {"long_name": "rotational inertia tensor about the centre of mass", "units": "kg m^2"},
+    "center_of_mass": {"long_name": "centre of mass at equilibrium", "units": "m"},
+    "center_of_buoyancy": {"long_name": "centre of buoyancy at equilibrium", "units": "m"},
+    "displaced_volume": {"long_name": "displaced volume at equilibrium", "units": "m^3"},
+    "reference_point": {
+        "long_name": "point about which the body's rotational coefficients are given",
+        "units": "m",
+    },
+}
+"""Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
+
+
+def attrs_for(name: Hashable) -> dict[str, str]:
+    """Return a copy of the attributes of variable ``name`` (empty when the name is unknown)."""
+    return dict(VARIABLE_ATTRS.get(str(name), {}))
+
+
+def apply_attrs(ds: xr.Dataset) -> xr.Dataset:
+    """Return ``ds`` with ``long_name`` and ``units`` set from the table on every known name.
+
+    Existing attributes other than these two are kept.
+    """
+    out = ds.copy()
+    for name in list(out.variables):
+        extra = attrs_for(name)
+        if extra:
+            out[name].attrs.update(extra)
+    return out

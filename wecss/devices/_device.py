@@ -1,0 +1,175 @@
+"""``Device``: a multibody model with its PTOs, hydrodynamic database and stated assumptions."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.linalg import eig
+
+from ..constants import GRAVITY
+from ..hydro import HydroData
+from ..hydro import load as load_hydro
+from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Multibody, StaticModel
+from ._spec import DeviceSpecError, build_model, read_spec
+
+
+@dataclass(frozen=True, eq=False)
+class Device:
+    """A wave energy converter: bodies, joints, PTOs, the hydrodynamic database it uses and its assumptions.
+
+    Build it with :meth:`from_spec` or :func:`wecss.devices.load`.
+
+    Attributes
+    ----------
+    name, description : str
+    model : Multibody
+    ptos : tuple of JointPTO or ActuatorPTO
+    hydro_source : str or None
+        Shipped database name or path to a database file (netCDF, WAMIT .out, Capytaine .nc).
+    assumptions : mapping of str to str
+        Every number that is not published, with its reason.
+    spec : dict
+        The spec it was built from (for round trips into result attributes).
+    """
+
+    name: str
+    description: str
+    model: Multibody
+    ptos: tuple[JointPTO | ActuatorPTO, ...]
+    hydro_source: str | None
+    assumptions: Mapping[str, str]
+    spec: Mapping[str, Any] = field(repr=False)
+
+    @classmethod
+    def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
+        """Build a device from a TOML spec file or a dict with the same keys (see ``wecss.devices._spec``).
+
+        Raises
+        ------
+        DeviceSpecError
+            On a malformed spec (the message says where).
+        FileNotFoundError
+            If the spec file does not exist.
+        """
+        spec, folder = read_spec(source)
+        model, ptos = build_model(spec)
+        hydro = spec.get("hydro")
+        if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out"))):
+            hydro = str((folder / hydro).resolve())
+        assumptions = {str(k): str(v) for k, v in spec.get("assumptions", {}).items()}
+        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec)
+
+    # --- hydrodynamics ----------------------------------------------------------------------------
+    def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:
+        """The device's hydrodynamic database (``source`` overrides the spec's: a HydroData, name or path).
+
+        Raises
+        ------
+        ValueError
+            If neither the spec nor ``source`` names a database.
+        """
+        src = self.hydro_source if source is None else source
+        if isinstance(src, HydroData):
+            return src
+        if src is None:
+            raise ValueError(f"device {self.name!r} names no hydrodynamic database; pass one (HydroData, name or path)")
+        path = Path(src)
+        if path.suffix == ".out":
+            return HydroData.from_wamit(path)
+        if path.suffix == ".nc":
+            if not path.is_file():
+                raise FileNotFoundError(f"device {self.name!r}: no hydrodynamic database at {str(path)!r}")
+            try:
+                return HydroData.from_netcdf(path)
+            except ValueError:
+                return HydroData.from_capytaine(path)
+        return load_hydro(str(src))
+
+    def coupling(self, hydro: str | Path | HydroData | None = None) -> HydroCoupling:
+        """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass)."""
+        return HydroCoupling.from_hydro(self.model, self.hydro(hydro))
+
+    def statics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> StaticModel:
+        """Gravity, buoyancy, hydrostatics and PTO springs at rest."""
+        coupling = self.coupling(hydro) if with_hydro else None
+        g = coupling.hydro.g if coupling is not None else GRAVITY
+        return StaticModel(self.model, g, coupling, self.ptos)
+
+    def dynamics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> Dynamics:
+        """MFM dynamics with the infinite-frequency added mass (when ``with_hydro``)."""
+        added = self.coupling(hydro).added_mass_inf if with_hydro else None
+        return Dynamics(self.model, added)
+
+    def natural_periods(self, hydro: str | Path | HydroData | None = None) -> dict[str, Any]:
+        """Undamped natural periods about the static equilibrium, with infinite-frequency added mass.
+
+        Returns
+        -------
+        dict
+            ``equilibrium`` (q), ``periods`` [s] sorted (inf for modes without stiffness) and ``modes``
+            (columns normalised to the largest entry, rows ``model.velocity_names``).
+        """
+        statics = self.statics(hydro)
+        q = statics.equilibrium()
+        mass = self.dynamics(hydro).terms(q, np.zeros(self.model.nv)).mass
+        stiffness = statics.stiffness(q)
+        values, vectors = eig(stiffness, mass)
+        omega2 = np.real(values)
+        tiny = 1e-9 * max(1.0, float(np.max(np.abs(omega2))))
+        periods = np.full(omega2.shape, np.inf)
+        stiff = omega2 > tiny
+        periods[stiff] = 2 * np.pi / np.sqrt(omega2[stiff])
+        vectors = np.real(vectors)
+        vectors = vectors / np.max(np.abs(vectors), axis=0, keepdims=True)
+        order = np.argsort(-periods, kind="stable")
+        return {"equilibrium": q, "periods": periods[order], "modes": vectors[:, order]}
+
+    def info(self, hydro: str | Path | HydroData | None = None) -> str:
+        """Bodies, joints, generalised coordinates, masses, PTOs and (when hydro data load) natural periods."""
+        m = self.model
+        lines = [f"device {self.name}: {self.description}".rstrip(": "), "", "bodies:"]
+        for b in m.bodies:
+            lines.append(
+                f"  {b.name:10s} mass {b.mass:10.4g} kg  centre of mass {np.round(b.center_of_mass, 4).tolist()} m  "
+                f"inertia diag {np.round(np.diag(b.inertia), 4).tolist()} kg m^2  hydro {b.hydro_body or '-'}"
+            )
+        lines.append("joints:")
+        for j in m.ordered_joints:
+            extra = ""
+            if j.axis is not None:
+                extra += f" axis {np.round(j.axis, 4).tolist()}"
+            if j.point is not None:
+                extra += f" point {np.round(j.point, 4).tolist()} m"
+            lines.append(f"  {j.name:10s} {j.kind:9s} {j.parent or 'ground'} -> {j.child}{extra}")
+        lines.append(f"generalised coordinates ({m.nv} DOF): {', '.join(m.velocity_names)}")
+        lines.append("PTOs:")
+        for p in self.ptos:
+            where = (
+                f"joint {p.joint}" if isinstance(p, JointPTO) else f"{p.body_a or 'ground'} -> {p.body_b or 'ground'}"
+            )
+            lines.append(f"  {p.name:10s} {where}: damping {p.damping:g}, stiffness {p.stiffness:g}")
+        try:
+            result = self.natural_periods(hydro)
+        except (ValueError, FileNotFoundError) as err:
+            lines.append(f"natural periods: not available ({err})")
+        else:
+            lines.append(
+                "undamped natural periods with infinite-frequency added mass [s] and the largest mode entries:"
+            )
+            names = m.velocity_names
+            for period, mode in zip(result["periods"], result["modes"].T, strict=True):
+                top = np.argsort(np.abs(mode))[::-1][:3]
+                shape = ", ".join(f"{names[k]} {mode[k]:+.2f}" for k in top if abs(mode[k]) > 0.05)
+                text = "inf (no stiffness)" if np.isinf(period) else f"{period:8.3f}"
+                lines.append(f"  {text:>18s}  {shape}")
+        if self.assumptions:
+            lines.append("assumptions:")
+            lines.extend(f"  {k}: {v}" for k, v in self.assumptions.items())
+        return "\n".join(lines)
+
+
+__all__ = ["Device", "DeviceSpecError"]

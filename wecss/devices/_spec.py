@@ -1,0 +1,135 @@
+"""Device specs: a declarative description (TOML file or dict) of bodies, joints, PTOs, the hydrodynamic
+database and the assumptions behind every number, turned into a :class:`Device`.
+
+Spec layout (TOML; the same keys as a dict)::
+
+    name = "m4-111"
+    description = "..."
+    hydro = "m4-111"            # shipped database name, or a path (relative to the spec file); optional
+    [assumptions]               # free text: what was assumed and why
+    hinge_height = "0.25 m above still water ..."
+    [[bodies]]                  # name, mass [kg], inertia [kg m^2] (3 diagonal values or 3x3 about the CoM),
+    name = "float_1"            # center_of_mass [m] (world, reference configuration), hydro_body (optional)
+    ...
+    [[joints]]                  # name, kind, child, parent (omit for the base), axis, point [m], label
+    ...
+    [[ptos]]                    # kind = "joint" (joint, rest) or "actuator" (body_a, point_a, body_b, point_b,
+    ...                         # rest_length); damping, stiffness, force_limit, stroke_limit
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Multibody
+
+_TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos"}
+_BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
+_JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label"}
+_JOINT_PTO_KEYS = {"name", "kind", "joint", "damping", "stiffness", "rest", "force_limit", "stroke_limit"}
+_ACTUATOR_KEYS = {
+    "name", "kind", "body_a", "point_a", "body_b", "point_b", "damping", "stiffness", "rest_length",
+    "force_limit", "stroke_limit",
+}  # fmt: skip
+
+
+class DeviceSpecError(ValueError):
+    """A device spec is malformed (unknown or missing keys, bad values)."""
+
+
+def _check_keys(where: str, entry: Mapping[str, Any], allowed: set[str], required: set[str]) -> None:
+    unknown = sorted(set(entry) - allowed)
+    if unknown:
+        raise DeviceSpecError(f"{where}: unknown keys {unknown}; accepted: {sorted(allowed)}")
+    missing = sorted(required - set(entry))
+    if missing:
+        raise DeviceSpecError(f"{where}: missing keys {missing}")
+
+
+def read_spec(source: str | Path | Mapping[str, Any]) -> tuple[dict[str, Any], Path | None]:
+    """Return the spec as a dict and the folder relative paths are taken from (None for a dict).
+
+    Raises
+    ------
+    FileNotFoundError
+        If a path does not exist.
+    DeviceSpecError
+        If the TOML cannot be parsed.
+    """
+    if isinstance(source, Mapping):
+        return dict(source), None
+    path = Path(source)
+    if not path.is_file():
+        raise FileNotFoundError(f"no device spec at {str(path)!r}")
+    try:
+        with path.open("rb") as fh:
+            return tomllib.load(fh), path.parent
+    except tomllib.TOMLDecodeError as err:
+        raise DeviceSpecError(f"{path}: {err}") from None
+
+
+def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | ActuatorPTO, ...]]:
+    """The multibody tree and PTOs of a spec.
+
+    Raises
+    ------
+    DeviceSpecError
+        On unknown or missing keys, or values the bodies, joints and PTOs reject (the message says where).
+    """
+    _check_keys("device spec", spec, _TOP_KEYS, {"name", "bodies", "joints"})
+    name = spec["name"]
+    bodies = []
+    for k, entry in enumerate(spec["bodies"]):
+        where = f"device {name!r}, bodies[{k}]"
+        _check_keys(where, entry, _BODY_KEYS, {"name", "mass", "inertia", "center_of_mass"})
+        try:
+            bodies.append(Body(**entry))
+        except (TypeError, ValueError) as err:
+            raise DeviceSpecError(f"{where}: {err}") from None
+    joints = []
+    for k, entry in enumerate(spec["joints"]):
+        where = f"device {name!r}, joints[{k}]"
+        _check_keys(where, entry, _JOINT_KEYS, {"name", "kind", "child"})
+        try:
+            joints.append(Joint(**entry))
+        except (TypeError, ValueError) as err:
+            raise DeviceSpecError(f"{where}: {err}") from None
+    try:
+        model = Multibody(bodies, joints)
+    except ValueError as err:
+        raise DeviceSpecError(f"device {name!r}: {err}") from None
+    ptos: list[JointPTO | ActuatorPTO] = []
+    for k, entry in enumerate(spec.get("ptos", [])):
+        where = f"device {name!r}, ptos[{k}]"
+        kind = entry.get("kind")
+        fields = {key: value for key, value in entry.items() if key != "kind"}
+        try:
+            if kind == "joint":
+                _check_keys(where, entry, _JOINT_PTO_KEYS, {"name", "kind", "joint"})
+                joint_pto = JointPTO(**fields)
+                joint = model.joint(joint_pto.joint)
+                if joint.kind not in ("revolute", "prismatic"):
+                    raise ValueError(
+                        f"joint {joint_pto.joint!r} is {joint.kind}; a joint PTO needs a revolute or prismatic joint"
+                    )
+                pto: JointPTO | ActuatorPTO = joint_pto
+            elif kind == "actuator":
+                _check_keys(where, entry, _ACTUATOR_KEYS, {"name", "kind", "point_a", "point_b"})
+                fields.setdefault("body_a", None)
+                fields.setdefault("body_b", None)
+                for side in ("body_a", "body_b"):
+                    if fields[side] is not None:
+                        model.body(fields[side])
+                pto = ActuatorPTO(**fields)
+            else:
+                raise ValueError(f"kind must be 'joint' or 'actuator'; got {kind!r}")
+        except (TypeError, ValueError) as err:
+            raise DeviceSpecError(f"{where}: {err}") from None
+        ptos.append(pto)
+    names = [p.name for p in ptos]
+    if len(set(names)) != len(names):
+        raise DeviceSpecError(f"device {name!r}: duplicate PTO names {names}")
+    return model, tuple(ptos)

@@ -1,0 +1,22 @@
+"""Moving Frame Method multibody core: SE(3) helpers, bodies and joints, tree kinematics (B, Bdot, D) and dynamics."""
+
+from ._dynamics import Dynamics as Dynamics
+from ._dynamics import body_mass_matrix as body_mass_matrix
+from ._dynamics import gravity_force as gravity_force
+from ._dynamics import potential_energy as potential_energy
+from ._hydrostatics import HydroCoupling as HydroCoupling
+from ._kinematics import KinematicState as KinematicState
+from ._kinematics import configuration_rate as configuration_rate
+from ._kinematics import difference as difference
+from ._kinematics import integrate as integrate
+from ._kinematics import kinematics as kinematics
+from ._loads import joint_reactions as joint_reactions
+from ._pto import PTO as PTO
+from ._pto import ActuatorPTO as ActuatorPTO
+from ._pto import JointPTO as JointPTO
+from ._statics import EQUILIBRIUM_TOL as EQUILIBRIUM_TOL
+from ._statics import EquilibriumError as EquilibriumError
+from ._statics import StaticModel as StaticModel
+from ._tree import Body as Body
+from ._tree import Joint as Joint
+from ._tree import Multibody as Multibody

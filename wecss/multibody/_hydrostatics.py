@@ -1,0 +1,103 @@
+"""A hydrodynamic database mapped onto the Cartesian coordinates of a multibody model (6 per body).
+
+The coefficients are moved to each model body's centre of mass first (DESIGN.md), so the model's own mass
+distribution decides the reference, whatever the database assumed. Hydrostatics follow DESIGN.md: gravity at
+each centre of mass, the equilibrium buoyancy rho g V as a constant upward force at the centre of mass, and the
+linear hydrostatic stiffness (about the centre of mass) on the displacement from the database's reference pose.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..hydro import HydroData, split_dof
+from ..hydro._schema import dof_index
+from ._kinematics import KinematicState
+from ._se3 import so3_log
+from ._tree import Multibody
+
+
+@dataclass(frozen=True, eq=False)
+class HydroCoupling:
+    """Hydrodynamic data of a model in its Cartesian coordinates.
+
+    Attributes
+    ----------
+    hydro : HydroData
+        The database restricted to the model's bodies, about the model bodies' centres of mass.
+    index : ndarray of int
+        Cartesian index (6 * body + k) of each hydro DOF, in the database's DOF order.
+    added_mass_inf, stiffness : ndarray (6n, 6n)
+        A_inf [kg, kg m, kg m^2] and the hydrostatic stiffness in Cartesian coordinates (zeros where no data).
+    buoyancy : ndarray (6n,)
+        Constant equilibrium buoyancy rho g V (world z) at each hydro body's centre of mass [N].
+    """
+
+    hydro: HydroData
+    index: np.ndarray
+    added_mass_inf: np.ndarray
+    stiffness: np.ndarray
+    buoyancy: np.ndarray
+
+    @classmethod
+    def from_hydro(cls, model: Multibody, hydro: HydroData) -> HydroCoupling:
+        """Map ``hydro`` onto ``model`` through each body's ``hydro_body``.
+
+        Raises
+        ------
+        ValueError
+            If a body names a hydro body that is not in the database, or two bodies name the same one.
+        """
+        pairs = [(i, b.hydro_body) for i, b in enumerate(model.bodies) if b.hydro_body is not None]
+        names = [h for _, h in pairs]
+        if len(set(names)) != len(names):
+            raise ValueError(f"two model bodies map to the same hydro body: {names}")
+        unknown = [h for h in names if h not in hydro.bodies]
+        if unknown:
+            raise ValueError(f"hydro bodies {unknown} are not in the database; it has {', '.join(hydro.bodies)}")
+        if not pairs:
+            raise ValueError("no model body names a hydro body (Body.hydro_body)")
+        sub = hydro.select(bodies=names)
+        moved = sub.with_reference_points({h: model.bodies[i].center_of_mass for i, h in pairs})
+        of_hydro = {h: i for i, h in pairs}
+        index = np.array([6 * of_hydro[split_dof(d)[0]] + dof_index(split_dof(d)[1]) for d in moved.dofs])
+        n6 = 6 * len(model.bodies)
+        ds = moved.dataset
+        added = np.zeros((n6, n6))
+        added[np.ix_(index, index)] = ds.added_mass_inf.values
+        stiffness = np.zeros((n6, n6))
+        stiffness[np.ix_(index, index)] = ds.hydrostatic_stiffness.values
+        buoyancy = np.zeros(n6)
+        for h, i in of_hydro.items():
+            buoyancy[6 * i + 2] = moved.rho * moved.g * float(ds.displaced_volume.sel(body=h))
+        return cls(moved, index, 0.5 * (added + added.T), stiffness, buoyancy)
+
+    def expand(self, matrix: np.ndarray) -> np.ndarray:
+        """A (..., ndof, ndof) matrix over the hydro DOFs as (..., 6n, 6n) Cartesian (zeros elsewhere)."""
+        n6 = self.buoyancy.size
+        out = np.zeros((*matrix.shape[:-2], n6, n6), dtype=matrix.dtype)
+        out[..., self.index[:, None], self.index[None, :]] = matrix
+        return out
+
+    def displacement(self, model: Multibody, state: KinematicState) -> np.ndarray:
+        """Cartesian displacement from the reference pose: CoM translation and rotation vector (world) [m, rad]."""
+        out = np.zeros(6 * len(model.bodies))
+        for i, body in enumerate(model.bodies):
+            out[6 * i : 6 * i + 3] = state.position[i] - body.center_of_mass
+            out[6 * i + 3 : 6 * i + 6] = so3_log(state.rotation[i])
+        return out
+
+    def hydrostatic_force(self, model: Multibody, state: KinematicState) -> np.ndarray:
+        """Buoyancy plus linear hydrostatic restoring force (world forces, body-frame moments) [N, N m]."""
+        world = self.buoyancy - self.stiffness @ self.displacement(model, state)
+        return to_body_moments(world, state)
+
+
+def to_body_moments(world: np.ndarray, state: KinematicState) -> np.ndarray:
+    """Convert the moments of a Cartesian load vector from world axes to body axes (forces stay in world axes)."""
+    out = world.copy()
+    for i in range(state.rotation.shape[0]):
+        out[6 * i + 3 : 6 * i + 6] = state.rotation[i].T @ world[6 * i + 3 : 6 * i + 6]
+    return out

@@ -1,0 +1,220 @@
+"""Kinematics of the whole tree: body poses, the MFM B-matrix (Eq. 28), its time derivative and D.
+
+Cartesian velocities follow the paper: per body, the world-frame velocity of the centre of mass followed
+by the body-frame angular velocity, X_dot = B(q) v (6 rows per body, in the order of ``Multibody.bodies``).
+
+Derivation used here (product of exponentials). Each joint has a constant twist xi in the world frame at
+the reference configuration. The displacement of a body from its reference pose is
+G_i = G_parent(i) exp(xi_i q_i), and the spatial velocity of body i is V_i = sum_c S_c v_c over the joint
+columns c on its path to the ground, with S_c = Ad(G_before(c)) xi_c. From a spatial twist V = (v, w):
+the centre of mass p_i moves at v + w x p_i and the body angular velocity is R_i^T w, so
+B_i = Phi_i S, Phi_i = [[I, -hat(p_i)], [0, R_i^T]]. Time derivatives: d/dt S_c = [V_before(c), S_c]
+(Lie bracket) and d/dt Phi_i = [[0, -hat(p_dot_i)], [0, -hat(w_body_i) R_i^T]].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _quaternion as quaternion
+from ._se3 import adjoint, frame, hat, se3_exp, twist_bracket
+from ._tree import Multibody
+
+_EX = np.array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+_EZ = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+
+
+@dataclass(frozen=True)
+class KinematicState:
+    """Kinematics of every body at one configuration (and velocity, when given).
+
+    Attributes
+    ----------
+    rotation : ndarray (n_body, 3, 3)
+        R_WB of each body (body axes in the world frame).
+    position : ndarray (n_body, 3)
+        p_WBcm_W: centre of mass of each body in the world frame [m].
+    B : ndarray (6 n_body, nv)
+        The MFM B-matrix: rows per body (world CoM velocity, body angular velocity).
+    Bdot : ndarray (6 n_body, nv) or None
+        dB/dt along the velocity v.
+    angular_velocity : ndarray (n_body, 3) or None
+        w_WB_B, body angular velocities in body axes [rad/s].
+    """
+
+    rotation: np.ndarray
+    position: np.ndarray
+    B: np.ndarray
+    Bdot: np.ndarray | None = None
+    angular_velocity: np.ndarray | None = None
+
+    def D(self) -> np.ndarray:
+        """Block-diagonal angular-velocity matrix of the MFM (Eq. 44): diag(0, hat(w_B)) per body."""
+        if self.angular_velocity is None:
+            raise ValueError("D needs the velocity: call kinematics(model, q, v)")
+        n = self.position.shape[0]
+        out = np.zeros((6 * n, 6 * n))
+        for i in range(n):
+            out[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = hat(self.angular_velocity[i])
+        return out
+
+    @property
+    def cartesian_velocity(self) -> np.ndarray:
+        """Not stored: use ``B @ v``."""
+        raise AttributeError("compute X_dot as state.B @ v (Eq. 28)")
+
+
+def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> KinematicState:
+    """Poses, B and (with ``v``) Bdot and body angular velocities of every body.
+
+    Parameters
+    ----------
+    model : Multibody
+    q : ndarray (nq,)
+        Generalised coordinates (``model.coordinate_names``).
+    v : ndarray (nv,), optional
+        Generalised velocities (``model.velocity_names``).
+
+    Raises
+    ------
+    ValueError
+        If ``q`` or ``v`` has the wrong length.
+    """
+    q = np.asarray(q, dtype=float)
+    if q.shape != (model.nq,):
+        raise ValueError(f"q must have {model.nq} entries ({', '.join(model.coordinate_names)}); got shape {q.shape}")
+    if v is not None:
+        v = np.asarray(v, dtype=float)
+        if v.shape != (model.nv,):
+            raise ValueError(f"v must have {model.nv} entries ({', '.join(model.velocity_names)}); got shape {v.shape}")
+    n = len(model.bodies)
+    nv = model.nv
+    rotation = np.zeros((n, 3, 3))
+    position = np.zeros((n, 3))
+    columns = np.zeros((6, nv))  # S
+    columns_dot = np.zeros((6, nv))  # dS/dt
+    chain = np.zeros((n, nv), dtype=bool)
+    displacement = [np.eye(4)] * n
+    twist = [np.zeros(6)] * n  # spatial velocity of each body
+    iq = iv = 0
+    for i in model.order:
+        body = model.bodies[i]
+        joint = model.joints[model.joint_of[i]]
+        par = model.parent[i]
+        g = displacement[par] if par >= 0 else np.eye(4)
+        vel = twist[par].copy() if par >= 0 else np.zeros(6)
+        if par >= 0:
+            chain[i] = chain[par]
+        c0 = body.center_of_mass
+        if joint.kind == "free":
+            p = q[iq : iq + 3]
+            r = quaternion.to_matrix(q[iq + 3 : iq + 7])
+            g = frame(r, p - r @ c0)
+            columns[:3, iv : iv + 3] = np.eye(3)
+            columns[:3, iv + 3 : iv + 6] = hat(p) @ r
+            columns[3:, iv + 3 : iv + 6] = r
+            chain[i, iv : iv + 6] = True
+            if v is not None:
+                w_b = v[iv + 3 : iv + 6]
+                p_dot = v[iv : iv + 3]
+                columns_dot[:3, iv + 3 : iv + 6] = hat(p_dot) @ r + hat(p) @ r @ hat(w_b)
+                columns_dot[3:, iv + 3 : iv + 6] = r @ hat(w_b)
+                vel = columns[:, iv : iv + 6] @ v[iv : iv + 6]
+        else:
+            if joint.kind == "planar":
+                xis = [_EX, _EZ, np.concatenate([np.cross(c0, [0.0, 1.0, 0.0]), [0.0, 1.0, 0.0]])]
+            else:
+                xis = list(joint.twists)
+            for k, xi in enumerate(xis):
+                col = iv + k
+                columns[:, col] = adjoint(g) @ xi
+                chain[i, col] = True
+                if v is not None:
+                    columns_dot[:, col] = twist_bracket(vel, columns[:, col])
+                    vel = vel + columns[:, col] * v[col]
+                g = g @ se3_exp(xi * q[iq + k])
+        displacement[i] = g
+        twist[i] = vel
+        rotation[i] = g[:3, :3]
+        position[i] = g[:3, :3] @ c0 + g[:3, 3]
+        iq += joint.nq
+        iv += joint.nv
+
+    b_matrix = np.zeros((6 * n, nv))
+    bdot = np.zeros((6 * n, nv)) if v is not None else None
+    omega_body = np.zeros((n, 3)) if v is not None else None
+    for i in range(n):
+        phi = np.zeros((6, 6))
+        phi[:3, :3] = np.eye(3)
+        phi[:3, 3:] = -hat(position[i])
+        phi[3:, 3:] = rotation[i].T
+        s = np.where(chain[i], columns, 0.0)
+        b_matrix[6 * i : 6 * i + 6] = phi @ s
+        if v is not None:
+            assert bdot is not None and omega_body is not None
+            xdot = phi @ (s @ v)
+            omega_body[i] = xdot[3:]
+            phi_dot = np.zeros((6, 6))
+            phi_dot[:3, 3:] = -hat(xdot[:3])
+            phi_dot[3:, 3:] = -hat(xdot[3:]) @ rotation[i].T
+            bdot[6 * i : 6 * i + 6] = phi_dot @ s + phi @ np.where(chain[i], columns_dot, 0.0)
+    return KinematicState(rotation, position, b_matrix, bdot, omega_body)
+
+
+def integrate(model: Multibody, q: np.ndarray, dv: np.ndarray) -> np.ndarray:
+    """Configuration reached from ``q`` by the velocity increment ``dv`` (v * dt) [joint units].
+
+    Joint coordinates add; a free base moves its centre of mass by ``dv[:3]`` (world) and rotates by
+    ``exp(hat(dv[3:6]))`` in body axes, keeping the quaternion on the unit sphere (SO(3) integration).
+    """
+    q = np.asarray(q, dtype=float).copy()
+    dv = np.asarray(dv, dtype=float)
+    iq = iv = 0
+    for joint in model.ordered_joints:
+        if joint.kind == "free":
+            q[iq : iq + 3] += dv[iv : iv + 3]
+            quat = quaternion.multiply(q[iq + 3 : iq + 7], quaternion.exp(dv[iv + 3 : iv + 6]))
+            q[iq + 3 : iq + 7] = quat / np.linalg.norm(quat)
+        else:
+            q[iq : iq + joint.nq] += dv[iv : iv + joint.nv]
+        iq += joint.nq
+        iv += joint.nv
+    return q
+
+
+def difference(model: Multibody, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
+    """Velocity increment dv with ``integrate(model, q0, dv) == q1`` (inverse of :func:`integrate`)."""
+    q0 = np.asarray(q0, dtype=float)
+    q1 = np.asarray(q1, dtype=float)
+    out = np.zeros(model.nv)
+    iq = iv = 0
+    for joint in model.ordered_joints:
+        if joint.kind == "free":
+            out[iv : iv + 3] = q1[iq : iq + 3] - q0[iq : iq + 3]
+            conj = q0[iq + 3 : iq + 7] * np.array([1.0, -1.0, -1.0, -1.0])
+            out[iv + 3 : iv + 6] = quaternion.log(quaternion.multiply(conj, q1[iq + 3 : iq + 7]))
+        else:
+            out[iv : iv + joint.nv] = q1[iq : iq + joint.nq] - q0[iq : iq + joint.nq]
+        iq += joint.nq
+        iv += joint.nv
+    return out
+
+
+def configuration_rate(model: Multibody, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """dq/dt for velocity ``v``: ``v`` itself for joint coordinates; for a free base, the world velocity of the
+    centre of mass and the quaternion rate 1/2 quat * (0, w_body)."""
+    q = np.asarray(q, dtype=float)
+    v = np.asarray(v, dtype=float)
+    out = np.zeros(model.nq)
+    iq = iv = 0
+    for joint in model.ordered_joints:
+        if joint.kind == "free":
+            out[iq : iq + 3] = v[iv : iv + 3]
+            out[iq + 3 : iq + 7] = 0.5 * quaternion.multiply(q[iq + 3 : iq + 7], np.array([0.0, *v[iv + 3 : iv + 6]]))
+        else:
+            out[iq : iq + joint.nq] = v[iv : iv + joint.nv]
+        iq += joint.nq
+        iv += joint.nv
+    return out

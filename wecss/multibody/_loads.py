@@ -1,0 +1,77 @@
+"""Joint reaction loads recovered by a Newton-Euler sweep from the leaves to the base.
+
+The MFM eliminates the constraint forces; structural and fatigue studies need them back. Given the motion
+(q, v, v_dot) and the applied Cartesian loads, each body needs the wrench W_i = M_tot a_i + w_i x (J_i w_i) -
+F_applied,i, with a = B v_dot + Bdot v; the joint of body i carries W_i plus what its children's joints carry.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._kinematics import kinematics
+from ._tree import Multibody
+
+
+def joint_reactions(
+    model: Multibody,
+    q: np.ndarray,
+    v: np.ndarray,
+    v_dot: np.ndarray,
+    applied: np.ndarray,
+    total_mass: np.ndarray,
+    rigid_mass: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Wrench each joint transmits from the parent (or ground) to its child's subtree.
+
+    Parameters
+    ----------
+    model : Multibody
+    q, v, v_dot : ndarray
+        Configuration, generalised velocities [m/s, rad/s] and accelerations [m/s^2, rad/s^2].
+    applied : ndarray (6n,)
+        Applied Cartesian loads: world forces at the centres of mass [N], body-frame moments [N m]
+        (everything except the joint loads: gravity, hydrodynamics, and the PTO loads if they are
+        applied as Cartesian loads).
+    total_mass, rigid_mass : ndarray (6n, 6n)
+        Rigid mass plus infinite-frequency added mass, and the rigid mass alone (for the gyroscopic term).
+
+    Returns
+    -------
+    (force, moment) : ndarrays (n_joint, 3)
+        In world axes, in the order of ``model.ordered_joints``; the moment is about the joint point (a revolute
+        joint's hinge point as it moves; the child's centre of mass otherwise) [N, N m]. The component of the
+        moment along a revolute joint's axis is the torque the joint itself supplies (its PTO torque).
+    """
+    st = kinematics(model, q, v)
+    assert st.Bdot is not None and st.angular_velocity is not None
+    acc = st.B @ v_dot + st.Bdot @ v
+    need = total_mass @ acc - applied
+    n = len(model.bodies)
+    force = np.zeros((n, 3))
+    moment_origin = np.zeros((n, 3))  # about the world origin
+    for i in range(n):
+        inertia = rigid_mass[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6]
+        w = st.angular_velocity[i]
+        m_body = need[6 * i + 3 : 6 * i + 6] + np.cross(w, inertia @ w)
+        f = need[6 * i : 6 * i + 3]
+        force[i] = f
+        moment_origin[i] = st.rotation[i] @ m_body + np.cross(st.position[i], f)
+    for i in reversed(model.order):
+        par = model.parent[i]
+        if par >= 0:
+            force[par] += force[i]
+            moment_origin[par] += moment_origin[i]
+    out_f = np.zeros((n, 3))
+    out_m = np.zeros((n, 3))
+    for k, i in enumerate(model.order):
+        joint = model.joints[model.joint_of[i]]
+        body = model.bodies[i]
+        if joint.kind == "revolute":
+            assert joint.point is not None
+            point = st.position[i] + st.rotation[i] @ (joint.point - body.center_of_mass)
+        else:
+            point = st.position[i]
+        out_f[k] = force[i]
+        out_m[k] = moment_origin[i] - np.cross(point, force[i])
+    return out_f, out_m

@@ -1,0 +1,317 @@
+"""Bodies, joints and the tree they form.
+
+Everything is described in the world frame at the reference configuration (all coordinates zero): body
+frames sit at the centres of mass with axes parallel to the world axes, joint axes and points are world
+vectors. This is the product-of-exponentials description of a kinematic tree (each joint a constant
+twist), from which the MFM's B-matrix follows (see ``_kinematics``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+JointKind = Literal["fixed", "planar", "free", "revolute", "prismatic", "weld"]
+BASE_KINDS: tuple[str, ...] = ("fixed", "planar", "free")
+CHILD_KINDS: tuple[str, ...] = ("revolute", "prismatic", "weld")
+
+_AXIS_LABELS = {"revolute": ("roll", "pitch", "yaw"), "prismatic": ("surge", "sway", "heave")}
+
+
+def _vector(value: object, name: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be 3 finite numbers [m or unit vector]; got {value!r}")
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Body:
+    """A rigid body.
+
+    Parameters
+    ----------
+    name : str
+        Unique name.
+    mass : float
+        Mass [kg], positive.
+    inertia : array_like of shape (3, 3)
+        Rotational inertia about the centre of mass, in body axes (parallel to the world axes at the reference
+        configuration) [kg m^2]; symmetric positive semi-definite.
+    center_of_mass : array_like of shape (3,)
+        Position of the centre of mass at the reference configuration, in the world frame [m]. The body frame sits here.
+    hydro_body : str or None
+        Name of the body in the hydrodynamic database that acts on this body (None: no hydrodynamics).
+
+    Raises
+    ------
+    ValueError
+        On a non-positive mass, a non-symmetric or indefinite inertia, or a malformed vector.
+    """
+
+    name: str
+    mass: float
+    inertia: np.ndarray
+    center_of_mass: np.ndarray
+    hydro_body: str | None = None
+
+    def __post_init__(self) -> None:
+        if not self.name or "__" in self.name:
+            raise ValueError(f"body name {self.name!r} must be non-empty and must not contain '__'")
+        if not (np.isfinite(self.mass) and self.mass > 0):
+            raise ValueError(f"body {self.name!r}: mass must be positive [kg]; got {self.mass!r}")
+        inertia = np.asarray(self.inertia, dtype=float)
+        if inertia.shape == (3,):
+            inertia = np.diag(inertia)
+        if inertia.shape != (3, 3) or not np.allclose(
+            inertia, inertia.T, rtol=0, atol=1e-12 * max(1, abs(inertia).max())
+        ):
+            raise ValueError(
+                f"body {self.name!r}: inertia must be a symmetric 3x3 matrix [kg m^2]; got {self.inertia!r}"
+            )
+        if np.min(np.linalg.eigvalsh(inertia)) < -1e-12 * max(1.0, float(np.abs(inertia).max())):
+            raise ValueError(f"body {self.name!r}: inertia must be positive semi-definite; got {inertia.tolist()}")
+        object.__setattr__(self, "mass", float(self.mass))
+        object.__setattr__(self, "inertia", inertia)
+        object.__setattr__(self, "center_of_mass", _vector(self.center_of_mass, f"body {self.name!r} center_of_mass"))
+
+
+@dataclass(frozen=True, eq=False)
+class Joint:
+    """A joint between a parent (None: the ground) and a child body.
+
+    Parameters
+    ----------
+    name : str
+        Unique name; generalised coordinates are called ``<name>__<label>``.
+    kind : {"fixed", "planar", "free", "revolute", "prismatic", "weld"}
+        Base joints (parent None): ``fixed`` (no motion), ``planar`` (surge, heave, pitch of the child's
+        centre of mass in the x-z plane), ``free`` (6 DOF; rotation on SO(3), coordinates x, y, z and a unit
+        quaternion, velocities the world velocity of the centre of mass and the body angular velocity).
+        Child joints: ``revolute`` (rotation about ``axis`` through ``point``), ``prismatic`` (translation along
+        ``axis``), ``weld`` (rigid).
+    child : str
+        Child body name.
+    parent : str or None
+        Parent body name, or None for the base joint.
+    axis : array_like of shape (3,), optional
+        Joint axis in the world frame at the reference configuration (revolute, prismatic); normalised.
+    point : array_like of shape (3,), optional
+        A point on a revolute joint's axis, world frame at the reference configuration [m].
+    label : str, optional
+        Name of the coordinate of a one-DOF joint (default from the axis: roll/pitch/yaw for revolute joints,
+        surge/sway/heave for prismatic joints, "angle"/"displacement" for oblique axes).
+    """
+
+    name: str
+    kind: JointKind
+    child: str
+    parent: str | None = None
+    axis: np.ndarray | None = None
+    point: np.ndarray | None = None
+    label: str | None = None
+
+    def __post_init__(self) -> None:
+        if not self.name or "__" in self.name:
+            raise ValueError(f"joint name {self.name!r} must be non-empty and must not contain '__'")
+        kinds = BASE_KINDS + CHILD_KINDS
+        if self.kind not in kinds:
+            raise ValueError(f"joint {self.name!r}: unknown kind {self.kind!r}; accepted: {', '.join(kinds)}")
+        if self.parent is None and self.kind not in BASE_KINDS:
+            raise ValueError(
+                f"joint {self.name!r}: a joint to the ground must be one of {', '.join(BASE_KINDS)}; got {self.kind!r}"
+            )
+        if self.parent is not None and self.kind not in CHILD_KINDS:
+            raise ValueError(
+                f"joint {self.name!r}: a joint between bodies must be one of {', '.join(CHILD_KINDS)}; "
+                f"got {self.kind!r}"
+            )
+        if self.kind in ("revolute", "prismatic"):
+            if self.axis is None:
+                raise ValueError(f"joint {self.name!r}: a {self.kind} joint needs an axis")
+            axis = _vector(self.axis, f"joint {self.name!r} axis")
+            norm = float(np.linalg.norm(axis))
+            if norm == 0:
+                raise ValueError(f"joint {self.name!r}: axis must not be zero")
+            object.__setattr__(self, "axis", axis / norm)
+        if self.kind == "revolute":
+            if self.point is None:
+                raise ValueError(f"joint {self.name!r}: a revolute joint needs a point on its axis [m]")
+            object.__setattr__(self, "point", _vector(self.point, f"joint {self.name!r} point"))
+
+    @property
+    def labels(self) -> tuple[str, ...]:
+        """Names of this joint's generalised velocities (its DOFs), without the joint-name prefix."""
+        if self.kind in ("fixed", "weld"):
+            return ()
+        if self.kind == "planar":
+            return ("surge", "heave", "pitch")
+        if self.kind == "free":
+            return ("surge", "sway", "heave", "roll", "pitch", "yaw")
+        if self.label is not None:
+            return (self.label,)
+        assert self.axis is not None
+        aligned = np.flatnonzero(np.isclose(np.abs(self.axis), 1.0))
+        if aligned.size == 1:
+            return (_AXIS_LABELS[self.kind][int(aligned[0])],)
+        return ("angle",) if self.kind == "revolute" else ("displacement",)
+
+    @property
+    def nv(self) -> int:
+        """Number of generalised velocities of this joint."""
+        return len(self.labels)
+
+    @property
+    def nq(self) -> int:
+        """Number of configuration coordinates (7 for a free joint: position and unit quaternion)."""
+        return 7 if self.kind == "free" else self.nv
+
+    @property
+    def twists(self) -> np.ndarray:
+        """Constant joint twists (v, w) in the world frame at the reference configuration, shape (nv, 6).
+
+        For a free joint these are not used (its Jacobian depends on the pose, see ``_kinematics``).
+        """
+        if self.kind == "revolute":
+            assert self.axis is not None and self.point is not None
+            return np.concatenate([np.cross(self.point, self.axis), self.axis])[None, :]
+        if self.kind == "prismatic":
+            assert self.axis is not None
+            return np.concatenate([self.axis, np.zeros(3)])[None, :]
+        return np.zeros((self.nv, 6))
+
+
+@dataclass(frozen=True, eq=False)
+class Multibody:
+    """A tree of rigid bodies joined by joints, in topological order (every parent before its children).
+
+    Parameters
+    ----------
+    bodies : sequence of Body
+    joints : sequence of Joint
+        Exactly one joint per body, naming it as child; exactly one base joint (parent None).
+
+    Attributes
+    ----------
+    order : tuple of int
+        Body indices in topological order.
+    parent : tuple of int
+        Index of each body's parent (-1 for the base).
+    coordinate_names, velocity_names : tuple of str
+        ``<joint>__<label>``; a free base has 7 coordinates (``x, y, z, qw, qx, qy, qz``) and 6 velocities.
+
+    Raises
+    ------
+    ValueError
+        On duplicate names, unknown bodies, a body without a joint or with two, several base joints, or a cycle.
+    """
+
+    bodies: tuple[Body, ...]
+    joints: tuple[Joint, ...]
+    order: tuple[int, ...] = field(init=False)
+    parent: tuple[int, ...] = field(init=False)
+    joint_of: tuple[int, ...] = field(init=False)
+
+    def __init__(self, bodies: Sequence[Body], joints: Sequence[Joint]) -> None:
+        object.__setattr__(self, "bodies", tuple(bodies))
+        object.__setattr__(self, "joints", tuple(joints))
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise ValueError(f"duplicate body names in {names}")
+        jnames = [j.name for j in self.joints]
+        if len(set(jnames)) != len(jnames):
+            raise ValueError(f"duplicate joint names in {jnames}")
+        joint_of = [-1] * len(names)
+        for k, joint in enumerate(self.joints):
+            for role, body in (("child", joint.child), ("parent", joint.parent)):
+                if body is not None and body not in names:
+                    raise ValueError(f"joint {joint.name!r}: unknown {role} body {body!r}; bodies: {', '.join(names)}")
+            c = names.index(joint.child)
+            if joint_of[c] >= 0:
+                raise ValueError(
+                    f"body {joint.child!r} is the child of two joints: {jnames[joint_of[c]]!r}, {joint.name!r}"
+                )
+            joint_of[c] = k
+        orphans = [names[i] for i, k in enumerate(joint_of) if k < 0]
+        if orphans:
+            raise ValueError(f"bodies {orphans} have no joint; every body needs exactly one joint to its parent")
+        bases = [j.name for j in self.joints if j.parent is None]
+        if len(bases) != 1:
+            raise ValueError(f"need exactly one base joint (parent None); got {bases}")
+        parent_names = [self.joints[joint_of[i]].parent for i in range(len(names))]
+        parent = [-1 if p is None else names.index(p) for p in parent_names]
+        order: list[int] = []
+        placed: set[int] = set()
+        while len(order) < len(names):
+            ready = [i for i in range(len(names)) if i not in placed and (parent[i] < 0 or parent[i] in placed)]
+            if not ready:
+                stuck = [names[i] for i in range(len(names)) if i not in placed]
+                raise ValueError(f"the joints form a cycle among bodies {stuck}")
+            for i in ready:
+                order.append(i)
+                placed.add(i)
+        object.__setattr__(self, "order", tuple(order))
+        object.__setattr__(self, "parent", tuple(parent))
+        object.__setattr__(self, "joint_of", tuple(joint_of))
+
+    # --- sizes and names -------------------------------------------------------------------------
+    @property
+    def body_names(self) -> tuple[str, ...]:
+        """Body names in the order given."""
+        return tuple(b.name for b in self.bodies)
+
+    @property
+    def ordered_joints(self) -> tuple[Joint, ...]:
+        """Joints in the topological order of their child bodies: the order of the generalised coordinates."""
+        return tuple(self.joints[self.joint_of[i]] for i in self.order)
+
+    @property
+    def velocity_names(self) -> tuple[str, ...]:
+        """Generalised velocity names, ``<joint>__<label>``."""
+        return tuple(f"{j.name}__{lab}" for j in self.ordered_joints for lab in j.labels)
+
+    @property
+    def coordinate_names(self) -> tuple[str, ...]:
+        """Generalised coordinate names (a free base has x, y, z, qw, qx, qy, qz)."""
+        out: list[str] = []
+        for j in self.ordered_joints:
+            labels = ("x", "y", "z", "qw", "qx", "qy", "qz") if j.kind == "free" else j.labels
+            out.extend(f"{j.name}__{lab}" for lab in labels)
+        return tuple(out)
+
+    @property
+    def nv(self) -> int:
+        """Number of generalised velocities (degrees of freedom)."""
+        return sum(j.nv for j in self.joints)
+
+    @property
+    def nq(self) -> int:
+        """Number of configuration coordinates."""
+        return sum(j.nq for j in self.joints)
+
+    def body(self, name: str) -> Body:
+        """The body called ``name``."""
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        raise ValueError(f"unknown body {name!r}; bodies: {', '.join(self.body_names)}")
+
+    def joint(self, name: str) -> Joint:
+        """The joint called ``name``."""
+        for j in self.joints:
+            if j.name == name:
+                return j
+        raise ValueError(f"unknown joint {name!r}; joints: {', '.join(j.name for j in self.joints)}")
+
+    def neutral_configuration(self) -> np.ndarray:
+        """The reference configuration q0 (zeros; identity quaternion for a free base)."""
+        q = np.zeros(self.nq)
+        k = 0
+        for j in self.ordered_joints:
+            if j.kind == "free":
+                q[k + 3] = 1.0
+            k += j.nq
+        return q

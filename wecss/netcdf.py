@@ -1,0 +1,92 @@
+"""netCDF interchange for every wecss dataset: complex values and atomic writes.
+
+netCDF has no complex type, so complex variables are written with a trailing ``complex`` dimension
+holding ``[re, im]`` and merged back on read. Writes go to a temporary file in the target folder
+that is renamed over the target only when complete, so a failed write never leaves a half file.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+COMPLEX_DIM = "complex"
+COMPLEX_COORD = ("re", "im")
+_COMPLEX_FLAG = "wecss_complex"
+
+
+def split_complex(ds: xr.Dataset) -> xr.Dataset:
+    """Return ``ds`` with each complex variable as a real variable with a trailing ``complex`` dimension."""
+    out = ds.copy()
+    for name in list(out.variables):
+        da = out[name]
+        if np.iscomplexobj(da.values):
+            stacked = xr.concat([da.real, da.imag], dim=COMPLEX_DIM).transpose(*da.dims, COMPLEX_DIM)
+            stacked.attrs = {**da.attrs, _COMPLEX_FLAG: 1}
+            out[name] = stacked
+    if COMPLEX_DIM in out.dims:
+        out = out.assign_coords({COMPLEX_DIM: list(COMPLEX_COORD)})
+    return out
+
+
+def merge_complex(ds: xr.Dataset) -> xr.Dataset:
+    """Inverse of :func:`split_complex`: merge ``[re, im]`` pairs back into complex variables."""
+    if COMPLEX_DIM not in ds.dims:
+        return ds
+    out = ds.copy()
+    for name in list(out.data_vars):
+        da = out[name]
+        if COMPLEX_DIM in da.dims:
+            merged = da.sel({COMPLEX_DIM: "re"}) + 1j * da.sel({COMPLEX_DIM: "im"})
+            merged = merged.drop_vars(COMPLEX_DIM, errors="ignore")
+            merged.attrs = {k: v for k, v in da.attrs.items() if k != _COMPLEX_FLAG}
+            out[name] = merged
+    return out.drop_dims(COMPLEX_DIM, errors="ignore")
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+    """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename).
+
+    Complex variables are split into ``[re, im]``. Returns the path written.
+
+    Raises
+    ------
+    FileNotFoundError
+        If the target folder does not exist.
+    """
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise FileNotFoundError(f"folder {str(folder)!r} for {str(target)!r} does not exist")
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+    os.close(fd)
+    try:
+        split_complex(ds).to_netcdf(tmp, engine="netcdf4")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes the file private; give it the usual permissions
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return target
+
+
+def read_netcdf(path: str | os.PathLike[str]) -> xr.Dataset:
+    """Read a dataset written by :func:`write_netcdf` fully into memory (the file is closed on return).
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    """
+    source = Path(path)
+    if not source.is_file():
+        raise FileNotFoundError(f"no netCDF file at {str(source)!r}")
+    with xr.open_dataset(source, engine="netcdf4") as ds:
+        loaded = ds.load()
+    return merge_complex(loaded)

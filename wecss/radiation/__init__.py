@@ -1,0 +1,16 @@
+"""Radiation memory: impulse responses, convolution, state-space fits (Prony / matrix pencil, Hankel-SVD
+realisation), stability and passivity checks and repair, fit reports."""
+
+from ._convolution import RadiationConvolution as RadiationConvolution
+from ._fit import FitSettings as FitSettings
+from ._fit import RadiationFit as RadiationFit
+from ._fit import fit_radiation as fit_radiation
+from ._irf import ImpulseResponse as ImpulseResponse
+from ._irf import filon_cosine_weights as filon_cosine_weights
+from ._irf import impulse_response as impulse_response
+from ._plot import plot_fit as plot_fit
+from ._statespace import STABILITY_DAMPING as STABILITY_DAMPING
+from ._statespace import RadiationStateSpace as RadiationStateSpace
+from ._statespace import Repair as Repair
+from ._statespace import enforce_passivity as enforce_passivity
+from ._statespace import passivity_grid as passivity_grid

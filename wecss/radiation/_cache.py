@@ -1,0 +1,70 @@
+"""A disk cache of radiation fits keyed by a hash of the hydrodynamic data and the fit settings.
+
+Location: ``$WECSS_CACHE_DIR/radiation`` or ``~/.cache/wecss/radiation``. Each entry is a small netCDF file with
+A, B, C and the fit report; writes are atomic, so concurrent runs never see half a file.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..hydro import HydroData
+from ..netcdf import read_netcdf, write_netcdf
+from ._statespace import RadiationStateSpace
+
+_HASHED = ("omega", "radiation_damping", "added_mass", "added_mass_inf")
+
+
+def cache_dir() -> Path:
+    """Folder of the radiation cache (created on first use)."""
+    root = os.environ.get("WECSS_CACHE_DIR")
+    base = Path(root) if root else Path.home() / ".cache" / "wecss"
+    return base / "radiation"
+
+
+def cache_key(hydro: HydroData, *parts: object) -> str:
+    """SHA-256 of the radiation data of ``hydro`` (values and DOF names) and the repr of ``parts``."""
+    h = hashlib.sha256()
+    ds = hydro.dataset
+    for name in _HASHED:
+        h.update(np.ascontiguousarray(ds[name].values, dtype=float).tobytes())
+    h.update("|".join(hydro.dofs).encode())
+    for part in parts:
+        h.update(repr(part).encode())
+    return h.hexdigest()[:32]
+
+
+def store(key: str, model: RadiationStateSpace, report: xr.Dataset) -> Path:
+    """Write a fit to the cache; returns the file."""
+    folder = cache_dir()
+    folder.mkdir(parents=True, exist_ok=True)
+    ds = report.copy()
+    ds["A"] = (("state", "state_col"), model.A)
+    ds["B"] = (("state", "dof"), model.B)
+    ds["C"] = (("dof", "state"), model.C)
+    ds = ds.assign_coords(dof=list(model.dofs))
+    ds.attrs["model_method"] = model.method
+    return write_netcdf(ds, folder / f"{key}.nc")
+
+
+def load(key: str) -> tuple[RadiationStateSpace, xr.Dataset] | None:
+    """A cached fit, or None."""
+    path = cache_dir() / f"{key}.nc"
+    if not path.is_file():
+        return None
+    ds = read_netcdf(path)
+    model = RadiationStateSpace(
+        np.asarray(ds["A"].values).reshape(ds.sizes.get("state", 0), ds.sizes.get("state_col", 0)),
+        np.asarray(ds["B"].values).reshape(ds.sizes.get("state", 0), ds.sizes["dof"]),
+        np.asarray(ds["C"].values).reshape(ds.sizes["dof"], ds.sizes.get("state", 0)),
+        tuple(str(d) for d in ds.dof.values),
+        str(ds.attrs["model_method"]),
+    )
+    report = ds.drop_vars(["A", "B", "C", "dof"])
+    report.attrs = {k: v for k, v in ds.attrs.items() if k != "model_method"}
+    return model, report

@@ -1,0 +1,244 @@
+"""State-space radiation models K(t) = C exp(A t) B, their frequency response and their checks.
+
+The radiation force is F = -C x with x_dot = A x + B v (v the body velocities). In frequency,
+K_hat(omega) = C (i omega I - A)^-1 B = B(omega) + i omega (A(omega) - A_inf) (e^{+i omega t} convention).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+MAX_REPAIR_VARIABLES: int = 6000
+"""Passivity repair is a semidefinite program in the non-zero residues; above this many it is not attempted
+(the report says so): fit fewer states (a MIMO realisation, a higher coupling threshold) instead."""
+
+MAX_LMI_FREQUENCIES: int = 12
+"""Frequencies added to the passivity LMIs per round (the worst local minima of the margin)."""
+
+STABILITY_DAMPING: float = 1e-3
+"""Smallest accepted damping ratio -Re(s)/|s| of a pole."""
+
+
+@dataclass(frozen=True)
+class RadiationStateSpace:
+    """A state-space realisation of the radiation kernel of ``dofs``.
+
+    Attributes
+    ----------
+    A : ndarray (n_x, n_x)
+    B : ndarray (n_x, n_dof)
+        Input: the velocities of the DOFs [m/s, rad/s].
+    C : ndarray (n_dof, n_x)
+        Output: the memory force is -C x [N, N m].
+    dofs : tuple of str
+    method : str
+        How it was made (``"prony"``, ``"era"``, ``"era-mimo"``, or given).
+    """
+
+    A: np.ndarray
+    B: np.ndarray
+    C: np.ndarray
+    dofs: tuple[str, ...]
+    method: str = "given"
+
+    def __post_init__(self) -> None:
+        nx = self.A.shape[0]
+        if self.A.shape != (nx, nx) or self.B.shape[0] != nx or self.C.shape[1] != nx:
+            raise ValueError(f"inconsistent shapes A {self.A.shape}, B {self.B.shape}, C {self.C.shape}")
+        if self.B.shape[1] != len(self.dofs) or self.C.shape[0] != len(self.dofs):
+            raise ValueError(f"B and C must have one column / row per DOF ({len(self.dofs)})")
+
+    @property
+    def n_states(self) -> int:
+        """Number of radiation states."""
+        return int(self.A.shape[0])
+
+    def poles(self) -> np.ndarray:
+        """Eigenvalues of A [1/s]."""
+        return self.modal()[0]
+
+    def modal(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Modal form (poles, C V, V^-1 B) with A = V diag(poles) V^-1, computed once.
+
+        A is split into its independent diagonal blocks first (connected components of its sparsity pattern), so
+        that the many small blocks of a per-entry fit cost one small eigen-decomposition each.
+        """
+        cached = self.__dict__.get("_modal")
+        if cached is not None:
+            return cached
+        nx = self.n_states
+        poles = np.zeros(nx, dtype=complex)
+        left = np.zeros((len(self.dofs), nx), dtype=complex)
+        right = np.zeros((nx, len(self.dofs)), dtype=complex)
+        if nx:
+            from scipy.sparse import csr_matrix
+            from scipy.sparse.csgraph import connected_components
+
+            _, labels = connected_components(csr_matrix((self.A != 0) | (self.A.T != 0)), directed=False)
+            for label in np.unique(labels):
+                idx = np.flatnonzero(labels == label)
+                lam, vec = np.linalg.eig(self.A[np.ix_(idx, idx)])
+                poles[idx] = lam
+                left[:, idx] = self.C[:, idx] @ vec
+                right[idx] = np.linalg.solve(vec, self.B[idx])
+        result = (poles, left, right)
+        object.__setattr__(self, "_modal", result)
+        return result
+
+    def min_damping_ratio(self) -> float:
+        """Smallest -Re(s)/|s| over the poles (inf without states)."""
+        s = self.poles()
+        if s.size == 0:
+            return float("inf")
+        return float(np.min(-s.real / np.maximum(np.abs(s), 1e-300)))
+
+    def is_stable(self, damping: float = STABILITY_DAMPING) -> bool:
+        """All poles in the left half-plane with damping ratio at least ``damping``."""
+        return self.min_damping_ratio() >= damping
+
+    def kernel(self, time: np.ndarray) -> np.ndarray:
+        """K(t) (n_t, n_dof, n_dof) at ``time`` [s], through the eigen-decomposition of A."""
+        time = np.atleast_1d(np.asarray(time, dtype=float))
+        n = len(self.dofs)
+        if self.n_states == 0:
+            return np.zeros((time.size, n, n))
+        lam, left, right = self.modal()
+        return np.real(np.einsum("ik,tk,kj->tij", left, np.exp(np.outer(time, lam)), right, optimize=True))
+
+    def frequency_response(self, omega: np.ndarray) -> np.ndarray:
+        """K_hat(omega) = C (i omega I - A)^-1 B (n_omega, n_dof, n_dof), complex."""
+        omega = np.atleast_1d(np.asarray(omega, dtype=float))
+        n = len(self.dofs)
+        if self.n_states == 0:
+            return np.zeros((omega.size, n, n), dtype=complex)
+        lam, left, right = self.modal()
+        return np.einsum("ik,wk,kj->wij", left, 1.0 / (1j * omega[:, None] - lam[None, :]), right, optimize=True)
+
+    def passivity(self, omega: np.ndarray) -> np.ndarray:
+        """Smallest eigenvalue of (K_hat + K_hat^H) / 2 at each ``omega`` [N s/m and N m s/rad mixed]."""
+        h = self.frequency_response(omega)
+        return np.linalg.eigvalsh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))[:, 0]
+
+    def with_matrices(
+        self, *, A: np.ndarray | None = None, B: np.ndarray | None = None, C: np.ndarray | None = None
+    ) -> RadiationStateSpace:
+        """A copy with some of A, B, C replaced."""
+        return replace(
+            self,
+            A=self.A if A is None else A,
+            B=self.B if B is None else B,
+            C=self.C if C is None else C,
+        )
+
+
+def _state_response(model: RadiationStateSpace, omega: np.ndarray) -> np.ndarray:
+    """G(omega) = (i omega I - A)^-1 B for every omega, (n_omega, n_x, n_dof), block by block."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    out = np.zeros((omega.size, model.n_states, len(model.dofs)), dtype=complex)
+    _, labels = connected_components(csr_matrix((model.A != 0) | (model.A.T != 0)), directed=False)
+    for label in np.unique(labels):
+        idx = np.flatnonzero(labels == label)
+        lam, vec = np.linalg.eig(model.A[np.ix_(idx, idx)])
+        right = np.linalg.solve(vec, model.B[idx])
+        out[:, idx, :] = np.einsum("ak,wk,kj->waj", vec, 1.0 / (1j * omega[:, None] - lam[None, :]), right)
+    return out
+
+
+def passivity_grid(omega_max_data: float, n: int = 4000) -> np.ndarray:
+    """Frequencies for the passivity check: 0 to ten times the highest data frequency, denser at low omega."""
+    top = 10 * omega_max_data
+    return np.unique(np.concatenate([np.linspace(0.0, top, n // 2), np.geomspace(1e-4, top, n // 2)]))
+
+
+@dataclass(frozen=True)
+class Repair:
+    """What :func:`enforce_stability` and :func:`enforce_passivity` changed."""
+
+    reflected_poles: int = 0
+    passivity_iterations: int = 0
+    residue_change: float = 0.0
+    margin_before: float = float("nan")
+    margin_after: float = float("nan")
+    skipped: int = 0
+
+    def __str__(self) -> str:
+        parts = []
+        if self.skipped:
+            parts.append(
+                f"NOT PASSIVE (margin {self.margin_before:.3g}); repair not attempted: {self.skipped} residues "
+                f"exceed MAX_REPAIR_VARIABLES = {MAX_REPAIR_VARIABLES}"
+            )
+        if self.reflected_poles:
+            parts.append(f"reflected {self.reflected_poles} unstable poles")
+        if self.passivity_iterations:
+            parts.append(
+                f"restored passivity in {self.passivity_iterations} iterations (residues changed by "
+                f"{self.residue_change:.2e} relative; margin {self.margin_before:.3g} -> {self.margin_after:.3g})"
+            )
+        return "; ".join(parts) if parts else "no repair needed"
+
+
+def enforce_passivity(
+    model: RadiationStateSpace, omega: np.ndarray, *, max_rounds: int = 12
+) -> tuple[RadiationStateSpace, Repair]:
+    """Perturb the output matrix C (the residues) as little as possible (Frobenius norm, within C's sparsity
+    pattern) until the smallest eigenvalue of (K_hat + K_hat^H)/2 is non-negative at every ``omega``.
+
+    K_hat(omega) = C G(omega) with G = (i omega I - A)^-1 B is linear in C, so the condition at one frequency is a
+    linear matrix inequality in C. Each round solves the convex problem with the LMIs at the frequencies found
+    violated so far (cvxpy), then checks the whole grid and adds the new local minima of the margin.
+    """
+    import cvxpy as cp
+
+    before = float(model.passivity(omega).min())
+    if before >= 0:
+        return model, Repair(margin_before=before, margin_after=before)
+    if int(np.count_nonzero(model.C)) > MAX_REPAIR_VARIABLES:
+        return model, Repair(margin_before=before, margin_after=before, skipped=int(np.count_nonzero(model.C)))
+    g = _state_response(model, omega)  # (w, nx, n)
+    n = model.C.shape[0]
+    mask = model.C != 0
+    diag = np.real(np.diagonal(model.frequency_response(omega), axis1=1, axis2=2))
+    target = 1e-6 * float(np.max(np.abs(diag)))
+    chosen: list[int] = []
+    c = model.C
+    rounds = 0
+    for rounds in range(1, max_rounds + 1):  # noqa: B007 - reported below
+        h = np.einsum("ia,waj->wij", c, g)
+        margin = np.linalg.eigvalsh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))[:, 0]
+        if margin.min() >= 0:
+            break
+        bad = np.flatnonzero(margin < target)
+        local = [
+            int(k)
+            for k in bad
+            if (k == 0 or margin[k] <= margin[k - 1]) and (k == omega.size - 1 or margin[k] <= margin[k + 1])
+        ]
+        worst = sorted(local, key=lambda k: margin[k])[:MAX_LMI_FREQUENCIES]
+        chosen = sorted({*chosen, *worst})
+        delta = cp.Variable(model.C.shape)
+        c_var = model.C + cp.multiply(mask.astype(float), delta)
+        constraints = []
+        for k in chosen:
+            re_x = c_var @ g[k].real
+            im_x = c_var @ g[k].imag
+            re_h = (re_x + re_x.T) / 2
+            im_h = (im_x - im_x.T) / 2
+            block = cp.bmat([[re_h, -im_h], [im_h, re_h]])
+            constraints.append((block + block.T) / 2 >> 2 * target * np.eye(2 * n))
+        problem = cp.Problem(cp.Minimize(cp.sum_squares(cp.multiply(mask.astype(float), delta))), constraints)
+        try:
+            problem.solve(solver=cp.CLARABEL)
+        except cp.error.SolverError:
+            problem.solve(solver=cp.SCS)
+        if delta.value is None:
+            break
+        c = model.C + mask * delta.value
+    repaired = model.with_matrices(C=c)
+    after = float(repaired.passivity(omega).min())
+    change = float(np.linalg.norm(c - model.C)) / max(float(np.linalg.norm(model.C)), 1e-300)
+    return repaired, Repair(0, rounds, change, before, after)

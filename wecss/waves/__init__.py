@@ -1,0 +1,25 @@
+"""Waves: spectra, elevation records (regular, irregular, periodic, measured) and excitation forces in time."""
+
+from ._elevation import DEFAULT_ENERGY_THRESHOLD as DEFAULT_ENERGY_THRESHOLD
+from ._elevation import DroppedComponents as DroppedComponents
+from ._elevation import Ramp as Ramp
+from ._elevation import WaveComponents as WaveComponents
+from ._elevation import drop_negligible as drop_negligible
+from ._elevation import from_elevation as from_elevation
+from ._elevation import irregular as irregular
+from ._elevation import regular as regular
+from ._excitation import ExcitationModel as ExcitationModel
+from ._excitation import excitation_coefficients as excitation_coefficients
+from ._excitation import excitation_model as excitation_model
+from ._spectra import Jonswap as Jonswap
+from ._spectra import PiersonMoskowitz as PiersonMoskowitz
+from ._spectra import Spectrum as Spectrum
+from ._spectra import TabulatedSpectrum as TabulatedSpectrum
+from ._spectra import deep_water_wavelength as deep_water_wavelength
+from ._spectra import energy_flux as energy_flux
+from ._spectra import energy_period as energy_period
+from ._spectra import group_velocity as group_velocity
+from ._spectra import hm0 as hm0
+from ._spectra import mean_period as mean_period
+from ._spectra import peak_period as peak_period
+from ._spectra import wavenumber as wavenumber
