@@ -14,7 +14,7 @@ from typing import Literal
 
 import numpy as np
 import xarray as xr
-from scipy.linalg import block_diag
+from scipy.linalg import block_diag, null_space
 
 from ..hydro import HydroData
 from ._irf import ImpulseResponse, impulse_response
@@ -22,6 +22,9 @@ from ._modal import hankel_realisation, matrix_pencil, realise
 from ._statespace import STABILITY_DAMPING, RadiationStateSpace, Repair, enforce_passivity, passivity_grid
 
 Method = Literal["prony", "era", "era-mimo"]
+
+ORDER_SLACK: float = 0.1
+"""When the targets are not reached, the lowest order within this relative margin of the best score is kept."""
 
 SUPPORT_FACTOR: float = 3.0
 """Kernel samples up to this multiple of an entry's truncation time are fitted and judged (the slow tail beyond
@@ -38,7 +41,8 @@ class FitSettings:
         Matrix-pencil Prony per entry, Hankel-SVD realisation per entry, or one Hankel-SVD realisation of the whole
         MIMO kernel (shared poles).
     coupling_threshold : float
-        Entries with peak |K_ij| below this fraction of sqrt(P_i P_j) are not fitted (reported as dropped).
+        Entries whose kernel peak is below this fraction of the largest diagonal peak are not fitted (reported as
+        dropped); the radiation issue's targets apply to the others.
     k0_tol, rms_tol, frequency_tol : float
         Targets: K(0) and RMS errors relative to the entry's peak; B and A - A_inf errors relative to their peaks.
     max_order : int
@@ -119,16 +123,23 @@ def _siso(a: np.ndarray, b: np.ndarray, c: np.ndarray, time: np.ndarray, omega: 
 
 
 def _entries(irf: ImpulseResponse, threshold: float) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
+    """Entries (i <= j) whose kernel peak is at least ``threshold`` times the largest diagonal peak, and the rest."""
     peak = np.max(np.abs(irf.kernel), axis=0)
-    diag = np.diag(peak)
-    scale = np.sqrt(np.outer(diag, diag))
+    largest = float(np.max(np.diag(peak)))
     n = peak.shape[0]
     fitted: list[tuple[int, int]] = []
     dropped: list[tuple[int, int]] = []
     for i in range(n):
         for j in range(i, n):
-            (fitted if peak[i, j] >= threshold * scale[i, j] and peak[i, j] > 0 else dropped).append((i, j))
+            (fitted if peak[i, j] >= threshold * largest and peak[i, j] > 0 else dropped).append((i, j))
     return fitted, dropped
+
+
+def _lowest_near_best(candidates: list[tuple[float, int, object]]) -> object:
+    """The lowest-order candidate whose score is within ORDER_SLACK of the best one (the targets decide the order;
+    when they cannot be met, no states are spent on improvements smaller than the slack)."""
+    best = min(score for score, _, _ in candidates)
+    return min((c for c in candidates if c[0] <= best * (1 + ORDER_SLACK)), key=lambda c: c[1])[2]
 
 
 def _fit_entry(
@@ -144,7 +155,7 @@ def _fit_entry(
     t = ref.time[window][::stride]
     y = ref.kernel[window, i, j][::stride]
     poles_of = method(y, float(t[1] - t[0]))
-    best = None
+    candidates: list[tuple[float, int, object]] = []
     for order in range(1, settings.max_order + 1):
         try:
             a, b, c = realise(poles_of(order), t, y)
@@ -158,12 +169,10 @@ def _fit_entry(
             errors[2] / settings.frequency_tol,
             errors[3] / settings.frequency_tol,
         )
-        if best is None or score < best[0]:
-            best = (score, a, b, c, a.shape[0], errors)
+        candidates.append((score, a.shape[0], (a, b, c, a.shape[0], errors)))
         if score <= 1.0:
-            break
-    assert best is not None
-    return best[1:]
+            return a, b, c, a.shape[0], errors
+    return _lowest_near_best(candidates)
 
 
 def _assemble(blocks: list[tuple[int, int, np.ndarray, np.ndarray, np.ndarray]], n: int):
@@ -222,7 +231,7 @@ def _fit_mimo(hydro: HydroData, irf: ImpulseResponse, settings: FitSettings):
     fitted, dropped = _entries(irf, settings.coupling_threshold)
     judge = np.arange(0, ref.time.size, max(1, ref.time.size // 2000))
     judged = replace(ref, time=ref.time[judge], kernel=ref.kernel[judge])
-    best = None
+    candidates: list[tuple[float, int, object]] = []
     orders = sorted({*range(2, 40, 2), *range(40, 200, 8), *range(200, 1001, 25)})
     for order in [k for k in orders if k <= min(settings.max_order_mimo, sv.size)]:
         root = 1.0 / np.sqrt(sv[:order])
@@ -238,7 +247,11 @@ def _fit_mimo(hydro: HydroData, irf: ImpulseResponse, settings: FitSettings):
         modes = _real_modes(a_c, b_c, t)  # (m, nx, n)
         design = np.transpose(modes, (0, 2, 1)).reshape(-1, order)
         target = np.transpose(y, (0, 2, 1)).reshape(-1, n)
-        c_c = np.linalg.lstsq(design, target, rcond=None)[0].T
+        # C with a zero kernel integral, C (-A^-1 B) = 0 (B(0) = 0, see _modal.realise): C' in the null space
+        free = null_space(np.linalg.solve(a_c, b_c).T)
+        if free.shape[1] == 0:
+            continue
+        c_c = (free @ np.linalg.lstsq(design @ free, target, rcond=None)[0]).T
         model = RadiationStateSpace(a_c, b_c, c_c, irf.dofs, "era-mimo")
         kernel = model.kernel(judged.time)
         response = model.frequency_response(ref.omega)
@@ -252,13 +265,13 @@ def _fit_mimo(hydro: HydroData, irf: ImpulseResponse, settings: FitSettings):
             )
             for e in rows
         )
-        if best is None or score < best[0]:
-            best = (score, model, rows)
+        candidates.append((score, order, (model, rows)))
         if score <= 1.0:
             break
-    if best is None:
+    if not candidates:
         raise RuntimeError("no MIMO realisation could be formed (every order had modes at the Nyquist limit)")
-    return best[1], best[2], dropped, ref
+    model, rows = _lowest_near_best(candidates)  # type: ignore[misc]
+    return model, rows, dropped, ref
 
 
 def fit_radiation(

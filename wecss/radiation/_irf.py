@@ -77,7 +77,7 @@ class ImpulseResponse:
     tail_exponent : ndarray (n_dof, n_dof)
         Exponent p of the high-frequency tail.
     tail_share : ndarray (n_dof, n_dof)
-        Share of (2/pi) int B that comes from the tail beyond the data [-].
+        Part of (2/pi) int B that comes from the tail beyond the data, relative to sqrt(K_ii(0) K_jj(0)) [-].
     omega : ndarray
         Frequencies the integral used (data, with 0, and the tail) [rad/s].
     """
@@ -191,8 +191,8 @@ def impulse_response(
     trap = filon_cosine_weights(grid, np.array([0.0]))[0]
     k0 = (2 / np.pi) * np.tensordot(trap, values, axes=(0, 0))
     data_part = (2 / np.pi) * np.tensordot(trap[: omega.size + 1], values[: omega.size + 1], axes=(0, 0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        share = np.where(np.abs(k0) > 0, 1 - data_part / k0, 0.0)
+    diag = np.sqrt(np.abs(np.outer(np.diag(k0), np.diag(k0))))
+    share = np.where(diag > 0, (k0 - data_part) / np.where(diag > 0, diag, 1.0), 0.0)
     peak = np.max(np.abs(kernel), axis=0)
     above = np.abs(kernel) > TRUNCATION_RTOL * peak[None]
     last = np.where(above.any(axis=0), time.size - 1 - np.argmax(above[::-1], axis=0), 0)

@@ -37,16 +37,41 @@ def _real_basis(poles: np.ndarray, time: np.ndarray) -> tuple[np.ndarray, list[t
     return np.array(cols).T, kept
 
 
-def realise(poles: np.ndarray, time: np.ndarray, samples: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _basis_integrals(kept: list[tuple[float, float]]) -> np.ndarray:
+    """int_0^inf of each real basis function (stable poles): -1/s, -s/(s^2+w^2) and w/(s^2+w^2)."""
+    out = []
+    for sigma, w in kept:
+        if w == 0.0:
+            out.append(-1.0 / sigma)
+        else:
+            out.extend([-sigma / (sigma**2 + w**2), w / (sigma**2 + w**2)])
+    return np.array(out)
+
+
+def realise(
+    poles: np.ndarray, time: np.ndarray, samples: np.ndarray, *, zero_integral: bool = True
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Least-squares residues for ``poles`` on the samples, and the real realisation (A, b, c).
 
-    Unstable poles are reflected into the left half-plane first (s -> -|Re s| + i Im s).
+    Unstable poles are reflected into the left half-plane first (s -> -|Re s| + i Im s). With ``zero_integral``
+    the residues satisfy int_0^inf K dt = 0 exactly (equality-constrained least squares), as radiation kernels
+    do (B(0) = 0): without it a tiny error in the integral makes Re K_hat(0) indefinite, i.e. the fitted
+    model non-passive at low frequency, where a free surge mode would drift.
     """
     poles = np.where(poles.real > 0, -poles.real + 1j * poles.imag, poles)
     basis, kept = _real_basis(poles, time)
     if not kept:
         return np.zeros((0, 0)), np.zeros(0), np.zeros(0)
-    coef = np.linalg.lstsq(basis, samples, rcond=None)[0]
+    if zero_integral:
+        integrals = _basis_integrals(kept)
+        m = basis.shape[1]
+        kkt = np.zeros((m + 1, m + 1))
+        kkt[:m, :m] = basis.T @ basis
+        kkt[:m, m] = kkt[m, :m] = integrals
+        rhs = np.concatenate([basis.T @ samples, [0.0]])
+        coef = np.linalg.lstsq(kkt, rhs, rcond=None)[0][:m]
+    else:
+        coef = np.linalg.lstsq(basis, samples, rcond=None)[0]
     n = basis.shape[1]
     a = np.zeros((n, n))
     b = np.zeros(n)

@@ -10,7 +10,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-MAX_REPAIR_VARIABLES: int = 6000
+MAX_REPAIR_VARIABLES: int = 1000
 """Passivity repair is a semidefinite program in the non-zero residues; above this many it is not attempted
 (the report says so): fit fewer states (a MIMO realisation, a higher coupling threshold) instead."""
 
@@ -174,7 +174,12 @@ class Repair:
             )
         if self.reflected_poles:
             parts.append(f"reflected {self.reflected_poles} unstable poles")
-        if self.passivity_iterations:
+        if self.passivity_iterations and not self.margin_after >= 0:
+            parts.append(
+                f"NOT PASSIVE: repair failed after {self.passivity_iterations} rounds (margin "
+                f"{self.margin_before:.3g} -> {self.margin_after:.3g})"
+            )
+        elif self.passivity_iterations:
             parts.append(
                 f"restored passivity in {self.passivity_iterations} iterations (residues changed by "
                 f"{self.residue_change:.2e} relative; margin {self.margin_before:.3g} -> {self.margin_after:.3g})"
