@@ -54,7 +54,9 @@ def significant(report, irf) -> np.ndarray:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="m4-111 with per-entry Prony only")
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "radiation_fits.md")
+    parser.add_argument(
+        "--out", type=Path, default=None, help="table to write (default: docs/radiation_fits.md; none with --quick)"
+    )
     args = parser.parse_args()
     methods = ["prony"] if args.quick else ["prony", "era", "era-mimo"]
     rows = []
@@ -135,8 +137,10 @@ def main() -> None:
         lines.append(
             f"- {name}, {method}: {', '.join(misses) if misses else 'none'} (largest tail share of K(0): {tail:.1%})"
         )
-    args.out.write_text("\n".join(lines) + "\n")
-    print(f"wrote {args.out}")
+    out = args.out if args.out is not None else (None if args.quick else ROOT / "docs" / "radiation_fits.md")
+    if out is not None:
+        out.write_text("\n".join(lines) + "\n")
+        print(f"wrote {out}")
 
 
 if __name__ == "__main__":
