@@ -60,11 +60,6 @@ class KinematicState:
             out[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = hat(self.angular_velocity[i])
         return out
 
-    @property
-    def cartesian_velocity(self) -> np.ndarray:
-        """Not stored: use ``B @ v``."""
-        raise AttributeError("compute X_dot as state.B @ v (Eq. 28)")
-
 
 def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> KinematicState:
     """Poses, B and (with ``v``) Bdot and body angular velocities of every body.

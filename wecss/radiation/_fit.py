@@ -307,11 +307,16 @@ def fit_radiation(
             return RadiationFit(hit[0], hit[1], Repair(), impulse_response(hydro))
     irf = irf or impulse_response(hydro)
     if settings.method == "era-mimo":
-        model, rows, dropped, _ = _fit_mimo(hydro, irf, settings)
+        model, rows, dropped, ref = _fit_mimo(hydro, irf, settings)
     else:
-        model, rows, dropped, _ = _fit_per_entry(hydro, irf, settings)
+        model, rows, dropped, ref = _fit_per_entry(hydro, irf, settings)
     grid = passivity_grid(float(hydro.omega[-1]))
+    fitted_c = model.C
     model, repair = enforce_passivity(model, grid)
+    if model.C is not fitted_c and not np.array_equal(model.C, fitted_c):  # the report judges the final model
+        kernel = model.kernel(ref.time)
+        response = model.frequency_response(ref.omega)
+        rows = [(i, j, order, *ref.errors(i, j, kernel[:, i, j], response[:, i, j])) for i, j, order, *_ in rows]
     report = _report(model, rows, dropped, settings, repair, grid, irf)
     if key is not None:
         from . import _cache

@@ -11,8 +11,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 MAX_REPAIR_VARIABLES: int = 1000
-"""Passivity repair is a semidefinite program in the non-zero residues; above this many it is not attempted
-(the report says so): fit fewer states (a MIMO realisation, a higher coupling threshold) instead."""
+"""Passivity repair is a semidefinite program in the non-zero residues up to this many; above, a first-order
+least-norm iteration (cheaper, and not always able to reach a non-negative margin: the report says)."""
+
+MAX_REPAIR_STATES: int = 500
+"""Above this many states no repair is attempted (the report says so): fit fewer states instead."""
 
 MAX_LMI_FREQUENCIES: int = 12
 """Frequencies added to the passivity LMIs per round (the worst local minima of the margin)."""
@@ -169,8 +172,8 @@ class Repair:
         parts = []
         if self.skipped:
             parts.append(
-                f"NOT PASSIVE (margin {self.margin_before:.3g}); repair not attempted: {self.skipped} residues "
-                f"exceed MAX_REPAIR_VARIABLES = {MAX_REPAIR_VARIABLES}"
+                f"NOT PASSIVE (margin {self.margin_before:.3g}); repair not attempted: {self.skipped} states "
+                f"exceed MAX_REPAIR_STATES = {MAX_REPAIR_STATES}"
             )
         if self.reflected_poles:
             parts.append(f"reflected {self.reflected_poles} unstable poles")
@@ -202,8 +205,10 @@ def enforce_passivity(
     before = float(model.passivity(omega).min())
     if before >= 0:
         return model, Repair(margin_before=before, margin_after=before)
+    if model.n_states > MAX_REPAIR_STATES:
+        return model, Repair(margin_before=before, margin_after=before, skipped=model.n_states)
     if int(np.count_nonzero(model.C)) > MAX_REPAIR_VARIABLES:
-        return model, Repair(margin_before=before, margin_after=before, skipped=int(np.count_nonzero(model.C)))
+        return _enforce_passivity_linearised(model, omega, before)
     g = _state_response(model, omega)  # (w, nx, n)
     n = model.C.shape[0]
     mask = model.C != 0
@@ -240,10 +245,60 @@ def enforce_passivity(
             problem.solve(solver=cp.CLARABEL)
         except cp.error.SolverError:
             problem.solve(solver=cp.SCS)
-        if delta.value is None:
-            break
+        if delta.value is None:  # the solver failed: fall back on the first-order iteration
+            return _enforce_passivity_linearised(model, omega, before)
         c = model.C + mask * delta.value
     repaired = model.with_matrices(C=c)
     after = float(repaired.passivity(omega).min())
     change = float(np.linalg.norm(c - model.C)) / max(float(np.linalg.norm(model.C)), 1e-300)
     return repaired, Repair(0, rounds, change, before, after)
+
+
+def _enforce_passivity_linearised(
+    model: RadiationStateSpace, omega: np.ndarray, before: float, *, max_iterations: int = 40
+) -> tuple[RadiationStateSpace, Repair]:
+    """First-order passivity repair for models too large for the LMIs: at the worst local minima of the margin,
+    d lambda_min = u' Re(dC G u) is linear in dC; each iteration takes the least-norm dC (within C's pattern) that
+    lifts them to a small positive margin, halving the step until the worst margin improves."""
+    g = _state_response(model, omega)
+    mask = model.C != 0
+    diag = np.real(np.diagonal(model.frequency_response(omega), axis1=1, axis2=2))
+    target = 1e-6 * float(np.max(np.abs(diag)))
+
+    def spectrum(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        h = np.einsum("ia,waj->wij", c, g)
+        return np.linalg.eigh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))
+
+    c = model.C.copy()
+    vals, vecs = spectrum(c)
+    iterations = 0
+    for iterations in range(1, max_iterations + 1):  # noqa: B007 - reported below
+        margin = vals[:, 0]
+        if margin.min() >= 0:
+            break
+        bad = np.flatnonzero(margin < target)
+        local = [
+            int(k)
+            for k in bad
+            if (k == 0 or margin[k] <= margin[k - 1]) and (k == omega.size - 1 or margin[k] <= margin[k + 1])
+        ]
+        picks = sorted({*local, *bad[:: max(1, bad.size // 40)].tolist()})
+        rows = np.array([np.real(np.outer(vecs[k, :, 0].conj(), g[k] @ vecs[k, :, 0]))[mask] for k in picks])
+        rhs = np.array([2 * target - margin[k] for k in picks])
+        delta = rows.T @ np.linalg.lstsq(rows @ rows.T, rhs, rcond=None)[0]
+        violation = float(np.sum(np.minimum(margin, 0.0) ** 2))
+        step = 1.0
+        for _ in range(12):  # accept the first step that lowers the total violation
+            trial = c.copy()
+            trial[mask] += step * delta
+            trial_vals, trial_vecs = spectrum(trial)
+            if float(np.sum(np.minimum(trial_vals[:, 0], 0.0) ** 2)) < violation:
+                break
+            step /= 2
+        else:
+            break
+        c, vals, vecs = trial, trial_vals, trial_vecs
+    repaired = model.with_matrices(C=c)
+    after = float(repaired.passivity(omega).min())
+    change = float(np.linalg.norm(c - model.C)) / max(float(np.linalg.norm(model.C)), 1e-300)
+    return repaired, Repair(0, iterations, change, before, after)
