@@ -190,6 +190,22 @@ class Repair:
         return "; ".join(parts) if parts else "no repair needed"
 
 
+def _local_minima_below(margin: np.ndarray, target: float) -> tuple[np.ndarray, list[int]]:
+    """Indices where the passivity margin is below ``target``, and those among them that are local minima."""
+    bad = np.flatnonzero(margin < target)
+    last = margin.size - 1
+    local = [
+        int(k) for k in bad if (k == 0 or margin[k] <= margin[k - 1]) and (k == last or margin[k] <= margin[k + 1])
+    ]
+    return bad, local
+
+
+def _hermitian_part_eigh(c: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Eigen-decomposition of (K_hat + K_hat^H)/2 with K_hat = C G(omega), at every omega."""
+    h = np.einsum("ia,waj->wij", c, g)
+    return np.linalg.eigh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))
+
+
 def enforce_passivity(
     model: RadiationStateSpace, omega: np.ndarray, *, max_rounds: int = 12
 ) -> tuple[RadiationStateSpace, Repair]:
@@ -218,16 +234,10 @@ def enforce_passivity(
     c = model.C
     rounds = 0
     for rounds in range(1, max_rounds + 1):  # noqa: B007 - reported below
-        h = np.einsum("ia,waj->wij", c, g)
-        margin = np.linalg.eigvalsh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))[:, 0]
+        margin = _hermitian_part_eigh(c, g)[0][:, 0]
         if margin.min() >= 0:
             break
-        bad = np.flatnonzero(margin < target)
-        local = [
-            int(k)
-            for k in bad
-            if (k == 0 or margin[k] <= margin[k - 1]) and (k == omega.size - 1 or margin[k] <= margin[k + 1])
-        ]
+        _, local = _local_minima_below(margin, target)
         worst = sorted(local, key=lambda k: margin[k])[:MAX_LMI_FREQUENCIES]
         chosen = sorted({*chosen, *worst})
         delta = cp.Variable(model.C.shape)
@@ -265,23 +275,14 @@ def _enforce_passivity_linearised(
     diag = np.real(np.diagonal(model.frequency_response(omega), axis1=1, axis2=2))
     target = 1e-6 * float(np.max(np.abs(diag)))
 
-    def spectrum(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        h = np.einsum("ia,waj->wij", c, g)
-        return np.linalg.eigh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))
-
     c = model.C.copy()
-    vals, vecs = spectrum(c)
+    vals, vecs = _hermitian_part_eigh(c, g)
     iterations = 0
     for iterations in range(1, max_iterations + 1):  # noqa: B007 - reported below
         margin = vals[:, 0]
         if margin.min() >= 0:
             break
-        bad = np.flatnonzero(margin < target)
-        local = [
-            int(k)
-            for k in bad
-            if (k == 0 or margin[k] <= margin[k - 1]) and (k == omega.size - 1 or margin[k] <= margin[k + 1])
-        ]
+        bad, local = _local_minima_below(margin, target)
         picks = sorted({*local, *bad[:: max(1, bad.size // 40)].tolist()})
         rows = np.array([np.real(np.outer(vecs[k, :, 0].conj(), g[k] @ vecs[k, :, 0]))[mask] for k in picks])
         rhs = np.array([2 * target - margin[k] for k in picks])
@@ -291,7 +292,7 @@ def _enforce_passivity_linearised(
         for _ in range(12):  # accept the first step that lowers the total violation
             trial = c.copy()
             trial[mask] += step * delta
-            trial_vals, trial_vecs = spectrum(trial)
+            trial_vals, trial_vecs = _hermitian_part_eigh(trial, g)
             if float(np.sum(np.minimum(trial_vals[:, 0], 0.0) ** 2)) < violation:
                 break
             step /= 2
