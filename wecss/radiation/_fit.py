@@ -313,7 +313,7 @@ def fit_radiation(
     grid = passivity_grid(float(hydro.omega[-1]))
     fitted_c = model.C
     model, repair = enforce_passivity(model, grid)
-    if model.C is not fitted_c and not np.array_equal(model.C, fitted_c):  # the report judges the final model
+    if not np.array_equal(model.C, fitted_c):  # the report judges the final (repaired) model
         kernel = model.kernel(ref.time)
         response = model.frequency_response(ref.omega)
         rows = [(i, j, order, *ref.errors(i, j, kernel[:, i, j], response[:, i, j])) for i, j, order, *_ in rows]

@@ -206,6 +206,22 @@ def _hermitian_part_eigh(c: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.n
     return np.linalg.eigh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))
 
 
+def _repair_target(model: RadiationStateSpace, omega: np.ndarray) -> float:
+    """Small positive margin the repairs aim at: 1e-6 of the largest diagonal damping on the grid."""
+    diag = np.real(np.diagonal(model.frequency_response(omega), axis1=1, axis2=2))
+    return 1e-6 * float(np.max(np.abs(diag)))
+
+
+def _repaired(
+    model: RadiationStateSpace, c: np.ndarray, omega: np.ndarray, before: float, rounds: int
+) -> tuple[RadiationStateSpace, Repair]:
+    """The model with output matrix ``c`` and the report of what the repair changed."""
+    repaired = model.with_matrices(C=c)
+    after = float(repaired.passivity(omega).min())
+    change = float(np.linalg.norm(c - model.C)) / max(float(np.linalg.norm(model.C)), 1e-300)
+    return repaired, Repair(0, rounds, change, before, after)
+
+
 def enforce_passivity(
     model: RadiationStateSpace, omega: np.ndarray, *, max_rounds: int = 12
 ) -> tuple[RadiationStateSpace, Repair]:
@@ -228,8 +244,7 @@ def enforce_passivity(
     g = _state_response(model, omega)  # (w, nx, n)
     n = model.C.shape[0]
     mask = model.C != 0
-    diag = np.real(np.diagonal(model.frequency_response(omega), axis1=1, axis2=2))
-    target = 1e-6 * float(np.max(np.abs(diag)))
+    target = _repair_target(model, omega)
     chosen: list[int] = []
     c = model.C
     rounds = 0
@@ -258,10 +273,7 @@ def enforce_passivity(
         if delta.value is None:  # the solver failed: fall back on the first-order iteration
             return _enforce_passivity_linearised(model, omega, before)
         c = model.C + mask * delta.value
-    repaired = model.with_matrices(C=c)
-    after = float(repaired.passivity(omega).min())
-    change = float(np.linalg.norm(c - model.C)) / max(float(np.linalg.norm(model.C)), 1e-300)
-    return repaired, Repair(0, rounds, change, before, after)
+    return _repaired(model, c, omega, before, rounds)
 
 
 def _enforce_passivity_linearised(
@@ -269,11 +281,10 @@ def _enforce_passivity_linearised(
 ) -> tuple[RadiationStateSpace, Repair]:
     """First-order passivity repair for models too large for the LMIs: at the worst local minima of the margin,
     d lambda_min = u' Re(dC G u) is linear in dC; each iteration takes the least-norm dC (within C's pattern) that
-    lifts them to a small positive margin, halving the step until the worst margin improves."""
+    lifts them to a small positive margin, halving the step until the total squared violation decreases."""
     g = _state_response(model, omega)
     mask = model.C != 0
-    diag = np.real(np.diagonal(model.frequency_response(omega), axis1=1, axis2=2))
-    target = 1e-6 * float(np.max(np.abs(diag)))
+    target = _repair_target(model, omega)
 
     c = model.C.copy()
     vals, vecs = _hermitian_part_eigh(c, g)
@@ -299,7 +310,4 @@ def _enforce_passivity_linearised(
         else:
             break
         c, vals, vecs = trial, trial_vals, trial_vecs
-    repaired = model.with_matrices(C=c)
-    after = float(repaired.passivity(omega).min())
-    change = float(np.linalg.norm(c - model.C)) / max(float(np.linalg.norm(model.C)), 1e-300)
-    return repaired, Repair(0, iterations, change, before, after)
+    return _repaired(model, c, omega, before, iterations)
