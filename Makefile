@@ -13,11 +13,11 @@ STAMP := $(VENV)/.installed
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test,bem,h5]"
+	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast]"
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(VENV)/bin/wecss info
+	$(VENV)/bin/wecss run
 
 test: $(STAMP)
 	$(PY) -m pytest
@@ -34,8 +34,10 @@ typecheck: $(STAMP)
 
 studies-quick: $(STAMP)
 	$(PY) studies/generate_hydro.py --all --quick
+	$(PY) studies/generate_fits.py --quick
 	$(PY) studies/radiation_fits.py --quick
 	$(PY) studies/bench_radiation.py --quick
+	$(PY) studies/bench_simulator.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

@@ -32,7 +32,13 @@ class Measurement:
 
 @runtime_checkable
 class Controller(Protocol):
-    """A PTO controller: one force (or torque) per PTO, positive extending the stroke."""
+    """A PTO controller: one force (or torque) per PTO, positive extending the stroke.
+
+    The simulator calls :meth:`compute` at the start of every step and holds the force over the step. A
+    controller that is a linear feedback on the PTO stroke may also offer ``linear_gains() -> (damping,
+    stiffness)`` (arrays, one per PTO); the simulator then applies f = -c x_dot - k x continuously inside the
+    equations of motion instead (as :class:`controllers.LinearDamping` does).
+    """
 
     needs_state: bool
 

@@ -43,5 +43,10 @@ class LinearDamping:
         self.c = np.broadcast_to(self._damping, (n_pto,)).copy()
         self.k = np.broadcast_to(self._stiffness, (n_pto,)).copy()
 
+    def linear_gains(self) -> tuple[np.ndarray, np.ndarray]:
+        """(damping, stiffness) per PTO: the simulator applies f = -c x_dot - k x inside the equations of motion
+        (continuous in time, as the paper's Eq. 50) instead of sampling :meth:`compute` once per step."""
+        return self.c.copy(), self.k.copy()
+
     def compute(self, t: float, measurement: Measurement) -> np.ndarray:
         return -self.c * measurement.velocity - self.k * measurement.displacement

@@ -14,40 +14,16 @@ from __future__ import annotations
 
 import argparse
 import platform
-import time
-from pathlib import Path
 
 import numpy as np
+from _common import ROOT, bench, write_section
 from scipy.linalg import expm
 from scipy.sparse import csr_matrix
 
 import wecss.hydro
 from wecss.radiation import FitSettings, RadiationConvolution, fit_radiation, impulse_response
 
-ROOT = Path(__file__).resolve().parents[1]
 SECTION = "## Radiation force per step"
-
-
-def bench(func, steps: int, repeats: int) -> float:
-    """Median time per step [s] over ``repeats`` runs of ``steps`` calls."""
-    runs = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        for _ in range(steps):
-            func()
-        runs.append((time.perf_counter() - start) / steps)
-    return float(np.median(runs))
-
-
-def write_section(path: Path, text: str) -> None:
-    """Replace (or append) the section of ``docs/benchmarks.md`` that starts with SECTION."""
-    old = path.read_text() if path.is_file() else "# Benchmarks\n"
-    head, _, rest = old.partition(SECTION)
-    tail = ""
-    if rest:
-        nxt = rest.find("\n## ")
-        tail = rest[nxt:] if nxt >= 0 else ""
-    path.write_text(head.rstrip() + "\n\n" + text.strip() + "\n" + tail)
 
 
 def main() -> None:
@@ -116,7 +92,7 @@ x {n}x{n} kernel | {t_conv * 1e6:.1f} us | {t_conv / t_ss:.1f} |
 {results["era-mimo"][0] * 1e6:.1f} us | {results["era-mimo"][0] / t_ss:.2f} |
 
 The paper's MATLAB code took 4.4 ms per step for the whole 111 model (Table 3)."""
-    write_section(ROOT / "docs" / "benchmarks.md", text)
+    write_section(ROOT / "docs" / "benchmarks.md", SECTION, text)
     print("updated docs/benchmarks.md")
 
 

@@ -26,3 +26,34 @@ def test_info_lists_the_shipped_databases(capsys: pytest.CaptureFixture[str]) ->
 def test_unknown_target_is_an_error(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["info", "m4-999"]) == 2
     assert "known: m4-111" in capsys.readouterr().err
+
+
+def _small_scene(tmp_path) -> str:  # type: ignore[no-untyped-def]
+    path = tmp_path / "small.toml"
+    path.write_text(
+        '[device]\nname = "m4-111"\n[sea]\nkind = "jonswap"\nheight = 0.04\nperiod = 1.2\nduration = "5 Tp"\n'
+        'ramp = "1 Tp"\n[outputs]\nvariables = ["pto", "elevation"]\n'
+    )
+    return str(path)
+
+
+def test_run_writes_result_and_picture_and_prints_the_summary(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "r.nc"
+    assert main(["run", _small_scene(tmp_path), "-o", str(out), "-q"]) == 0
+    text = capsys.readouterr().out
+    assert out.is_file() and out.with_suffix(".png").is_file()
+    assert "mean power [W]" in text and "hinge_3" not in text and "pto_3" in text
+    assert "capture width ratio" in text and "steps/s" in text
+    assert main(["info", str(out)]) == 0
+    assert "pto_power" in capsys.readouterr().out
+    picture = tmp_path / "again.png"
+    assert main(["plot", str(out), "-o", str(picture)]) == 0
+    assert picture.is_file()
+
+
+def test_run_reports_bad_scenes_without_a_traceback(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "bad.toml"
+    path.write_text('[sea]\nkind = "choppy"\n')
+    assert main(["run", str(path), "-q"]) == 2
+    assert "accepted: regular, jonswap" in capsys.readouterr().err
+    assert main(["run", str(tmp_path / "missing.toml"), "-q"]) == 2

@@ -2,8 +2,10 @@
 
 ``wecss info`` lists the shipped hydrodynamic databases; ``wecss info DEVICE`` (a catalogue name such as
 ``m4-134``, or a spec ``.toml``) prints bodies, joints, generalised coordinates, masses and the undamped natural
-periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic database. Further sub-commands
-(``run``, ``plot``) arrive with the simulator.
+periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic database or a simulation result.
+
+``wecss run [SCENE.toml] [-o RESULT.nc]`` simulates a scene (without one: the embedded default, M4 134 in a
+JONSWAP sea) and writes the result and a PNG summary plot; ``wecss plot RESULT.nc`` plots a result.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from . import __version__
 
@@ -37,6 +40,14 @@ def _info(target: str | None) -> int:
     from . import devices
 
     path = Path(target)
+    if path.suffix == ".nc" and path.is_file() and _is_result(path):
+        from .results import open_result
+
+        ds = open_result(path)
+        print(ds)
+        print()
+        print(_summary(ds))
+        return 0
     if path.suffix == ".toml" or target in devices.available():
         device = devices.Device.from_spec(path) if path.suffix == ".toml" else devices.load(target)
         print(device.info())
@@ -52,13 +63,101 @@ def _info(target: str | None) -> int:
     return 0
 
 
+def _is_result(path: Path) -> bool:
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        return "scene" in nc.ncattrs()
+
+
+def _summary(ds: Any) -> str:
+    """The table printed after a run: mean power per PTO, CWR, RMS hinge angle, timings."""
+    import numpy as np
+
+    from .results import capture_width_ratio, mean_power, rms_hinge_angle
+
+    lines = [
+        f"{ds.attrs.get('title', 'result')}: {ds.attrs.get('solver')} dt {ds.attrs.get('time_step'):.4g} s, "
+        f"{ds.attrs.get('n_steps')} steps; radiation: {ds.attrs.get('radiation')}"
+    ]
+    power = mean_power(ds)
+    rms = rms_hinge_angle(ds) if ("pto_angle" in ds or "rms_pto_angle" in ds) else None
+    lines.append(f"{'PTO':<12}{'mean power [W]':>16}{'RMS angle [deg]':>18}")
+    for name in power.pto.values:
+        angle = ""
+        if rms is not None and name in rms[rms.dims[0]].values:
+            angle = f"{np.degrees(float(rms.sel({rms.dims[0]: name}))):18.3f}"
+        lines.append(f"{name:<12}{float(power.sel(pto=name)):16.5g}{angle}")
+    lines.append(f"{'total':<12}{float(power.sum()):16.5g}")
+    if "wave_energy_flux" in ds.attrs:
+        cwr = capture_width_ratio(ds)
+        line = f"capture width ratio {float(cwr):.4g} (energy period Te = {cwr.attrs['energy_period_used_s']:.4g} s)"
+        try:
+            paper = capture_width_ratio(ds, convention="paper")
+            line += f"; {float(paper):.4g} with the paper's Te = {paper.attrs['energy_period_used_s']:.4g} s"
+        except ValueError:
+            pass
+        lines.append(line)
+    lines.append(
+        f"run time {ds.attrs['run_time_s']:.3g} s, {ds.attrs['steps_per_second']:,.0f} steps/s"
+        f" (numba {'on' if ds.attrs.get('numba') else 'off'})"
+    )
+    if ds.attrs.get("notes", "none") != "none":
+        lines.append(f"notes: {ds.attrs['notes']}")
+    return "\n".join(lines)
+
+
+def _run(scene_path: str | None, output: str | None, png: str | None, quiet: bool) -> int:
+    from .results import plot_timeseries, save
+    from .sim import Scene, default_scene_path, simulate
+
+    path = Path(scene_path) if scene_path else default_scene_path()
+    scene = Scene.from_toml(path)
+    out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
+    if not quiet:
+        print(f"scene {path}", file=sys.stderr)
+    ds = simulate(scene, progress=not quiet)
+    save(ds, out)
+    picture = Path(png) if png else out.with_suffix(".png")
+    if "time" in ds.dims:
+        import matplotlib.pyplot as plt
+
+        fig = plot_timeseries(ds, picture)
+        plt.close(fig)
+    print(_summary(ds))
+    print(f"wrote {out}" + (f" and {picture}" if "time" in ds.dims else ""))
+    return 0
+
+
+def _plot(result: str, png: str | None) -> int:
+    from .results import open_result, plot_timeseries
+
+    ds = open_result(result)
+    picture = Path(png) if png else Path(result).with_suffix(".png")
+    import matplotlib.pyplot as plt
+
+    plt.close(plot_timeseries(ds, picture))
+    print(f"wrote {picture}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``wecss`` command."""
     parser = argparse.ArgumentParser(prog="wecss", description="Multi-body wave energy converter toolkit.")
     parser.add_argument("--version", action="version", version=f"wecss {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     info = sub.add_parser("info", help="describe a device, a shipped hydrodynamic database or a netCDF file")
-    info.add_argument("target", nargs="?", help="device or database name, device spec (.toml) or database (.nc)")
+    info.add_argument(
+        "target", nargs="?", help="device or database name, device spec (.toml), database or result (.nc)"
+    )
+    run = sub.add_parser("run", help="simulate a scene (default: the embedded M4 134 scene)")
+    run.add_argument("scene", nargs="?", help="scene file (.toml); without it the embedded default runs")
+    run.add_argument("-o", "--output", help="result file (.nc); default: <scene name>.nc in this folder")
+    run.add_argument("--png", help="summary plot (.png); default: next to the result")
+    run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    plot = sub.add_parser("plot", help="plot a result file's time series to PNG")
+    plot.add_argument("result", help="result file (.nc)")
+    plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")
     return parser
 
 
@@ -68,9 +167,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "info":
             return _info(args.target)
+        if args.command == "run":
+            return _run(args.scene, args.output, args.png, args.quiet)
+        if args.command == "plot":
+            return _plot(args.result, args.output)
     except (ValueError, FileNotFoundError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2
+    except RuntimeError as err:  # SimulationDiverged
+        print(f"wecss: {type(err).__name__}: {err}", file=sys.stderr)
+        return 3
     return 0  # pragma: no cover - argparse rejects unknown commands
 
 

@@ -48,10 +48,11 @@ def merge_complex(ds: xr.Dataset) -> xr.Dataset:
     return out.drop_dims(COMPLEX_DIM, errors="ignore")
 
 
-def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, compress: bool = False) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename).
 
-    Complex variables are split into ``[re, im]``. Returns the path written.
+    Complex variables are split into ``[re, im]``; ``compress`` stores every variable zlib-compressed (lossless).
+    Returns the path written.
 
     Raises
     ------
@@ -65,7 +66,9 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
     os.close(fd)
     try:
-        split_complex(ds).to_netcdf(tmp, engine="netcdf4")
+        split = split_complex(ds)
+        encoding = {name: {"zlib": True, "complevel": 6} for name in split.data_vars} if compress else None
+        split.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes the file private; give it the usual permissions

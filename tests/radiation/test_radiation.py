@@ -174,3 +174,29 @@ def test_fit_plot(hydro, irf) -> None:
 
     fig = plot_fit(fit_radiation(hydro, irf=irf))
     assert len(fig.axes) == 2
+
+
+def test_real_modal_form_keeps_the_kernel() -> None:
+    a, b, c = known_system()
+    model = RadiationStateSpace(a, b, c, ("p__Heave", "q__Heave"))
+    modal = model.real_modal()
+    assert np.count_nonzero(modal.A) <= 4 * modal.n_states  # 2x2 blocks
+    omega = np.linspace(0.1, 20.0, 40)
+    np.testing.assert_allclose(modal.frequency_response(omega), model.frequency_response(omega), atol=1e-10)
+
+
+def test_shipped_fits_are_found_when_the_user_cache_is_empty(tmp_path, monkeypatch) -> None:
+    """Band-limited fits of the shipped M4 databases ship with the package (studies/generate_fits.py)."""
+    from wecss.devices import load as load_device
+    from wecss.radiation import _cache as cache
+    from wecss.radiation import fit_cache_key
+
+    monkeypatch.setenv("WECSS_CACHE_DIR", str(tmp_path))
+    hydro = load_device("m4-111").coupling().hydro
+    top = float(hydro.omega[-1])
+    key = fit_cache_key(hydro, FitSettings(method="era-mimo"), (0.6 * top, top))
+    hit = cache.load(key)
+    assert hit is not None
+    model, report = hit
+    assert model.n_states == int(report.attrs["n_states"]) and model.is_stable(0.0)
+    assert not list(tmp_path.glob("**/*.nc"))

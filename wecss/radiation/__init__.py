@@ -4,6 +4,7 @@ realisation), stability and passivity checks and repair, fit reports."""
 from ._convolution import RadiationConvolution as RadiationConvolution
 from ._fit import FitSettings as FitSettings
 from ._fit import RadiationFit as RadiationFit
+from ._fit import fit_cache_key as fit_cache_key
 from ._fit import fit_radiation as fit_radiation
 from ._irf import ImpulseResponse as ImpulseResponse
 from ._irf import filon_cosine_weights as filon_cosine_weights

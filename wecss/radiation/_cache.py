@@ -1,7 +1,9 @@
 """A disk cache of radiation fits keyed by a hash of the hydrodynamic data and the fit settings.
 
 Location: ``$WECSS_CACHE_DIR/radiation`` or ``~/.cache/wecss/radiation``. Each entry is a small netCDF file with
-A, B, C and the fit report; writes are atomic, so concurrent runs never see half a file.
+A, B, C and the fit report; writes are atomic, so concurrent runs never see half a file. Fits of the shipped
+databases ship with the package (``wecss/data/radiation``, made by ``studies/generate_fits.py``) and are found
+when the user's cache has no entry for the key.
 """
 
 from __future__ import annotations
@@ -39,9 +41,14 @@ def cache_key(hydro: HydroData, *parts: object) -> str:
     return h.hexdigest()[:32]
 
 
-def store(key: str, model: RadiationStateSpace, report: xr.Dataset) -> Path:
-    """Write a fit to the cache; returns the file."""
-    folder = cache_dir()
+SHIPPED_DIR = Path(__file__).resolve().parent.parent / "data" / "radiation"
+"""Folder of the fits shipped with the package."""
+
+
+def store(key: str, model: RadiationStateSpace, report: xr.Dataset, *, folder: Path | None = None) -> Path:
+    """Write a fit to the cache (or to ``folder``, compressed); returns the file."""
+    compress = folder is not None
+    folder = cache_dir() if folder is None else folder
     folder.mkdir(parents=True, exist_ok=True)
     ds = report.copy()
     ds["A"] = (("state", "state_col"), model.A)
@@ -49,12 +56,14 @@ def store(key: str, model: RadiationStateSpace, report: xr.Dataset) -> Path:
     ds["C"] = (("dof", "state"), model.C)
     ds = ds.assign_coords(dof=list(model.dofs))
     ds.attrs["model_method"] = model.method
-    return write_netcdf(ds, folder / f"{key}.nc")
+    return write_netcdf(ds, folder / f"{key}.nc", compress=compress)
 
 
 def load(key: str) -> tuple[RadiationStateSpace, xr.Dataset] | None:
-    """A cached fit, or None."""
+    """A cached fit (the user's cache first, then the shipped fits), or None."""
     path = cache_dir() / f"{key}.nc"
+    if not path.is_file():
+        path = SHIPPED_DIR / f"{key}.nc"
     if not path.is_file():
         return None
     ds = read_netcdf(path)

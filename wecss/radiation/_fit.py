@@ -104,8 +104,18 @@ class _Reference:
 
 def _reference(hydro: HydroData, irf: ImpulseResponse) -> _Reference:
     ds = hydro.dataset
-    added = ds.added_mass.values - ds.added_mass_inf.values[None]
     support = np.minimum(np.maximum(SUPPORT_FACTOR * irf.truncation_time, 20 * irf.dt), irf.time[-1])
+    if irf.band is not None:
+        # a band-limited kernel is judged against itself, below the roll-off: B and A - A_inf from its transform
+        # (A_inf of a band-limited model differs from the database's by a constant the simulator corrects)
+        omega = hydro.omega[hydro.omega <= irf.band[0]]
+        weights = np.full(irf.time.size, irf.dt)
+        weights[[0, -1]] *= 0.5
+        phase = np.exp(-1j * np.outer(omega, irf.time)) * weights[None, :]
+        n = len(irf.dofs)
+        response = (phase @ irf.kernel.reshape(irf.time.size, n * n)).reshape(omega.size, n, n)
+        return _Reference(irf.time, irf.kernel, omega, response.real, response.imag / omega[:, None, None], support)
+    added = ds.added_mass.values - ds.added_mass_inf.values[None]
     return _Reference(irf.time, irf.kernel, hydro.omega, ds.radiation_damping.values, added, support)
 
 
@@ -274,12 +284,21 @@ def _fit_mimo(hydro: HydroData, irf: ImpulseResponse, settings: FitSettings):
     return model, rows, dropped, ref
 
 
+def fit_cache_key(hydro: HydroData, settings: FitSettings, band: tuple[float, float] | None = None) -> str:
+    """Key of a fit in the radiation cache: a hash of the radiation data, the settings and the band."""
+    from . import _cache
+
+    kernel = "irf-default" if band is None else f"band-{band[0]:.12g}-{band[1]:.12g}"
+    return _cache.cache_key(hydro, asdict(settings), kernel)
+
+
 def fit_radiation(
     hydro: HydroData,
     settings: FitSettings | None = None,
     *,
     irf: ImpulseResponse | None = None,
     cache: bool = False,
+    band: tuple[float, float] | None = None,
 ) -> RadiationFit:
     """Fit a state-space model to the radiation kernel of ``hydro``, check it and repair it when needed.
 
@@ -288,7 +307,11 @@ def fit_radiation(
     frequency (else the residues are perturbed, :func:`enforce_passivity`).
 
     With ``cache`` the fit is stored in and reused from the disk cache (``wecss.radiation._cache``), keyed by a
-    hash of the radiation data and the settings (only for the default impulse response).
+    hash of the radiation data and the settings (only for impulse responses made here).
+
+    ``band`` (rad/s): fit the band-limited kernel ``impulse_response(hydro, band=band, tail=False)`` instead,
+    judged against itself below ``band[0]``. It needs far fewer states and fits the band the sea states use much
+    better; its A_inf differs from the database's by a constant that ``wecss.sim`` corrects.
 
     Returns
     -------
@@ -298,14 +321,22 @@ def fit_radiation(
     """
     settings = settings or FitSettings()
     key = None
+    if band is not None and irf is not None:
+        raise ValueError("give either irf or band, not both")
+
+    def make_irf() -> ImpulseResponse:
+        return impulse_response(hydro) if band is None else impulse_response(hydro, band=band, tail=False)
+
     if cache and irf is None:
         from . import _cache
 
-        key = _cache.cache_key(hydro, asdict(settings), "irf-default")
+        key = _cache.cache_key(
+            hydro, asdict(settings), "irf-default" if band is None else f"band-{band[0]:.12g}-{band[1]:.12g}"
+        )
         hit = _cache.load(key)
         if hit is not None:
-            return RadiationFit(hit[0], hit[1], Repair(), impulse_response(hydro))
-    irf = irf or impulse_response(hydro)
+            return RadiationFit(hit[0], hit[1], Repair(), make_irf())
+    irf = irf or make_irf()
     if settings.method == "era-mimo":
         model, rows, dropped, ref = _fit_mimo(hydro, irf, settings)
     else:

@@ -91,6 +91,7 @@ class ImpulseResponse:
     tail_share: np.ndarray
     omega: np.ndarray
     damping: np.ndarray
+    band: tuple[float, float] | None = None
 
     @property
     def dt(self) -> float:
@@ -143,6 +144,7 @@ def impulse_response(
     dt: float | None = None,
     t_max: float | None = None,
     tail: bool = True,
+    band: tuple[float, float] | None = None,
 ) -> ImpulseResponse:
     """Impulse response functions of every pair of DOFs.
 
@@ -153,6 +155,11 @@ def impulse_response(
         Time step [s] (default: pi / (4 omega_max), four samples per period of the highest data frequency).
     t_max : float, optional
         Last time [s]; at most pi / d_omega of the data (default: that limit).
+    band : (float, float), optional
+        Band-limit the kernel: B is multiplied by a cosine roll-off from 1 at ``band[0]`` to 0 at ``band[1]``
+        [rad/s] (and the tail, if any, ends there). A band-limited kernel has no sharp peak at t = 0, so a
+        state-space fit needs far fewer states; the content above the band, where a sea state has no energy,
+        is dropped (its added-mass effect in the band is a constant, see ``wecss.sim``'s A_inf correction).
     tail : bool
         Continue B beyond the data with a fitted power law up to TAIL_FACTOR times the highest frequency. The
         tail shapes K near t = 0 (its share of K(0) is reported); beyond the data its content is unresolved by
@@ -185,6 +192,20 @@ def impulse_response(
         tail_values = damping[-1][None] * (omega[-1] / extra[:, None, None]) ** exponents[None]
         grid = np.concatenate([grid, extra])
         values = np.concatenate([values, tail_values])
+    if band is not None:
+        lo, hi = band
+        if not 0 < lo < hi:
+            raise ValueError(f"band must be (start, end) of the roll-off with 0 < start < end [rad/s]; got {band!r}")
+        if tail and grid[-1] < hi:
+            raise ValueError(f"band end {hi} rad/s lies beyond the tail ({grid[-1]:.4g} rad/s)")
+        keep = grid <= hi
+        if grid[keep][-1] < hi:  # close the roll-off exactly at hi
+            grid = np.concatenate([grid[keep], [hi]])
+            values = np.concatenate([values[keep], values[keep][-1:]])
+        else:
+            grid, values = grid[keep], values[keep]
+        roll = np.where(grid <= lo, 1.0, np.cos(0.5 * np.pi * np.clip((grid - lo) / (hi - lo), 0.0, 1.0)) ** 2)
+        values = values * roll[:, None, None]
     time = np.arange(0.0, t_max + dt / 2, dt)
     weights = filon_cosine_weights(grid, time)
     kernel = (2 / np.pi) * (weights @ values.reshape(grid.size, n * n)).reshape(time.size, n, n)
@@ -196,4 +217,4 @@ def impulse_response(
     peak = np.max(np.abs(kernel), axis=0)
     above = np.abs(kernel) > TRUNCATION_RTOL * peak[None]
     last = np.where(above.any(axis=0), time.size - 1 - np.argmax(above[::-1], axis=0), 0)
-    return ImpulseResponse(time, kernel, tuple(hydro.dofs), time[last], k0, exponents, share, grid, values)
+    return ImpulseResponse(time, kernel, tuple(hydro.dofs), time[last], k0, exponents, share, grid, values, band)

@@ -124,6 +124,34 @@ class RadiationStateSpace:
         h = self.frequency_response(omega)
         return np.linalg.eigvalsh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))[:, 0]
 
+    def real_modal(self) -> RadiationStateSpace:
+        """The same kernel in real modal form: A block-diagonal with [[s, w], [-w, s]] per conjugate pair (and s per
+        real pole), so that A is sparse and the model is small to store."""
+        lam, left, right = self.modal()
+        blocks, b_rows, c_cols = [], [], []
+        tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)
+        for k in np.flatnonzero(lam.imag >= -tol):
+            if lam[k].imag > tol[k]:
+                # z = l' x / complex pair: x_re, x_im with z = x_re + i x_im; K = 2 Re(left z)
+                s, w = lam[k].real, lam[k].imag
+                blocks.append(np.array([[s, -w], [w, s]]))
+                b_rows += [right[k].real, right[k].imag]
+                c_cols += [2 * left[:, k].real, -2 * left[:, k].imag]
+            else:
+                blocks.append(np.array([[lam[k].real]]))
+                b_rows.append(right[k].real)
+                c_cols.append(left[:, k].real)
+        n = sum(b.shape[0] for b in blocks)
+        a = np.zeros((n, n))
+        i = 0
+        for block in blocks:
+            m = block.shape[0]
+            a[i : i + m, i : i + m] = block
+            i += m
+        b = np.array(b_rows).reshape(n, len(self.dofs))
+        c = np.array(c_cols).reshape(n, len(self.dofs)).T
+        return replace(self, A=a, B=b, C=c)
+
     def with_matrices(
         self, *, A: np.ndarray | None = None, B: np.ndarray | None = None, C: np.ndarray | None = None
     ) -> RadiationStateSpace:

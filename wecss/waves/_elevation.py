@@ -82,15 +82,33 @@ class WaveComponents:
 def evaluate(coefficients: np.ndarray, omega: np.ndarray, time: np.ndarray, *, chunk: int = 2_000_000) -> np.ndarray:
     """sum_k C[j, k] exp(i omega_k t) for every row j and time t, as complex (n_rows, n_times), in chunks.
 
-    Take the real part for Re[...] signals. Chunks keep memory at about ``chunk`` complex products.
+    Take the real part for Re[...] signals. Chunks keep memory at about ``chunk`` complex products. On uniformly
+    spaced times the phasors come from a product recurrence, exp(i omega (t0 + k dt)) = exp(i omega t0)
+    exp(i omega dt)^k, restarted from an exact exponential every RECURRENCE_RESTART steps (relative error below
+    1e-13), which is several times cheaper than a complex exponential per product.
     """
     time = np.atleast_1d(time)
     out = np.empty((coefficients.shape[0], time.size), dtype=complex)
     step = max(1, chunk // max(1, omega.size))
+    uniform = time.size > 2 and np.allclose(np.diff(time), time[1] - time[0], rtol=1e-9, atol=0.0)
     for start in range(0, time.size, step):
         t = time[start : start + step]
-        out[:, start : start + step] = coefficients @ np.exp(1j * np.outer(omega, t))
+        if uniform and t.size > 2:
+            phase = np.empty((omega.size, t.size), dtype=complex)
+            rotation = np.exp(1j * omega * (time[1] - time[0]))
+            for k0 in range(0, t.size, RECURRENCE_RESTART):
+                k1 = min(t.size, k0 + RECURRENCE_RESTART)
+                block = np.broadcast_to(rotation[:, None], (omega.size, k1 - k0)).copy()
+                block[:, 0] = np.exp(1j * omega * t[k0])
+                phase[:, k0:k1] = np.cumprod(block, axis=1)
+        else:
+            phase = np.exp(1j * np.outer(omega, t))
+        out[:, start : start + step] = coefficients @ phase
     return out
+
+
+RECURRENCE_RESTART: int = 256
+"""Steps between exact exponentials in :func:`evaluate`'s phasor recurrence."""
 
 
 def regular(height: float, period: float, *, phase: float = 0.0, direction: float = 0.0) -> WaveComponents:

@@ -1,0 +1,123 @@
+"""Benchmark: the nonlinear MFM simulator per time step, for the M4 layouts 111, 132 and 134, with convolution and
+with state-space radiation, beside the paper's 4.4 ms per step (Table 3, MATLAB, 111 layout). Also the embedded
+default scene end to end (M4 134, JONSWAP Hs 0.04 m, Tp 1.2 s, 100 Tp, dt = Tp/200: 20,000 steps) and the pure
+numpy/Python path without numba. Writes the tables into ``docs/benchmarks.md`` (section "Simulator").
+
+Times are medians of repeated runs of ``simulate`` on a compiled scene: the time loop alone (with the excitation)
+and the whole call (with the result Dataset: poses, elevation); compilation, the impulse response and the
+state-space fit are done once before and reported apart. The
+first run of a new process also compiles the numba kernels (cached on disk afterwards); it is not counted.
+
+    python studies/bench_simulator.py           # full: three layouts, 3 repeats of the 100 Tp scene
+    python studies/bench_simulator.py --quick   # m4-111 only, 10 Tp, 1 repeat (CI smoke run)
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import os
+import platform
+import subprocess
+import sys
+import time
+
+import numpy as np
+from _common import ROOT, write_section
+
+from wecss.sim import JIT, Scene, compile_scene, default_scene_path, simulate
+
+SECTION = "## Simulator"
+PAPER_STEP = 4.4e-3  # s per step, M4 paper Table 3 (MATLAB, 111 layout)
+
+
+def layout_scene(device: str, radiation: str, duration: str | float, ramp: str | float = "5 Tp") -> Scene:
+    """The default scene on another layout, radiation method and duration."""
+    base = Scene.from_toml(default_scene_path())
+    return dataclasses.replace(
+        base,
+        device=dataclasses.replace(base.device, name=device),
+        sea=dataclasses.replace(base.sea, duration=duration, ramp=ramp),
+        radiation=dataclasses.replace(base.radiation, method=radiation),
+    )
+
+
+def timed(scene: Scene, repeats: int) -> tuple[float, float, float, dict]:
+    """(compile time, median time of simulate(), median time of its time loop, attrs of the last run) [s]."""
+    start = time.perf_counter()
+    compiled = compile_scene(scene)
+    compile_time = time.perf_counter() - start
+    simulate(compiled)  # warm-up: numba compilation or cache load
+    runs, loops, attrs = [], [], {}
+    for _ in range(repeats):
+        start = time.perf_counter()
+        ds = simulate(compiled)
+        runs.append(time.perf_counter() - start)
+        loops.append(float(ds.attrs["run_time_s"]))
+        attrs = dict(ds.attrs)
+    return compile_time, float(np.median(runs)), float(np.median(loops)), attrs
+
+
+def pure_python_step(device: str) -> float:
+    """Seconds per step of the state-space scene without numba (short run in a subprocess, WECSS_JIT=0)."""
+    code = (
+        "import time, dataclasses, sys; sys.path.insert(0, 'studies')\n"
+        "from bench_simulator import layout_scene\n"
+        "from wecss.sim import compile_scene, simulate\n"
+        f"sc = layout_scene({device!r}, 'state_space', 0.6, 0.1)\n"
+        "c = compile_scene(sc)\n"
+        "t = time.perf_counter(); ds = simulate(c); print((time.perf_counter() - t) / c.n_steps)\n"
+    )
+    env = {**os.environ, "WECSS_JIT": "0"}
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True, cwd=ROOT)
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    devices = ["m4-111"] if args.quick else ["m4-111", "m4-132", "m4-134"]
+    duration, repeats = ("10 Tp", 1) if args.quick else ("100 Tp", 3)
+    rows = []
+    for device in devices:
+        for radiation in ("state_space", "convolution"):
+            compile_time, run, loop, attrs = timed(layout_scene(device, radiation, duration), repeats)
+            steps = int(attrs["n_steps"])
+            rows.append((device, radiation, attrs["radiation"], compile_time, run, loop, steps, attrs))
+            print(f"{device} {radiation}: loop {loop / steps * 1e6:.1f} us/step, simulate() {run:.2f} s", flush=True)
+    pure = pure_python_step("m4-111")
+    numba = "on" if JIT else "off (numba not installed: the pure path)"
+    lines = [
+        SECTION,
+        "",
+        f"`python studies/bench_simulator.py{' --quick' if args.quick else ''}` on {platform.machine()}, "
+        f"Python {platform.python_version()}, numba {numba}; JONSWAP Hs 0.04 m, Tp 1.2 s, gamma 3.3, "
+        f"{duration}, dt = Tp/200 = 6 ms, Beeman predictor-corrector (tolerance 1e-6), PTO damping 6 N m s/rad; "
+        f"medians of {repeats} runs after a warm-up run.",
+        "",
+        "| layout | radiation | model | time loop per step | whole simulate() per step | simulate() | "
+        "evaluations per step | paper's 4.4 ms per step / ours | compile scene (IRF; fit from cache) |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for device, radiation, model, compile_time, run, loop, steps, attrs in rows:
+        lines.append(
+            f"| {device} | {radiation.replace('_', ' ')} | {model.split(';')[0].split(', every')[0]} | "
+            f"{loop / steps * 1e6:.1f} us | {run / steps * 1e6:.1f} us | {run:.2f} s | "
+            f"{attrs['evaluations_per_step']:.2f} | {PAPER_STEP / (run / steps):,.0f} | {compile_time:.2f} s |"
+        )
+    lines += [
+        "",
+        f"Pure Python/numpy path (WECSS_JIT=0, same kernels uncompiled), m4-111 with state-space radiation: "
+        f"{pure * 1e3:.2f} ms per step.",
+        "",
+        "Targets (issue 5): 111 with state-space radiation at most 20 us per step; the default 134 scene "
+        "(20,000 steps) in at most 2 s with state-space radiation and 10 s with convolution. The paper reports "
+        "4-8 minutes per 134 sea state.",
+    ]
+    write_section(ROOT / "docs" / "benchmarks.md", SECTION, "\n".join(lines))
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

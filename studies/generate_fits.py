@@ -1,0 +1,51 @@
+"""Generate the state-space radiation fits shipped with wecss (``wecss/data/radiation``): the band-limited MIMO
+Hankel-SVD fits that ``radiation.method = "state_space"`` uses with its defaults, for the shipped M4 databases.
+
+A scene finds them through the radiation cache (same key: a hash of the radiation data and the fit settings), so
+that the first state-space run of a shipped layout does not spend minutes fitting. They are stored in real modal
+form (block-diagonal A, same kernel to rounding), compressed.
+
+    python studies/generate_fits.py           # fit (or take from the user's cache) m4-111, m4-132, m4-134
+    python studies/generate_fits.py --quick   # check that every shipped fit matches today's data and settings
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from wecss.devices import load as load_device
+from wecss.radiation import _cache as cache
+from wecss.radiation import fit_cache_key, fit_radiation
+from wecss.sim import Scene
+from wecss.sim._compile import fit_request
+
+DATABASES = ("m4-111", "m4-132", "m4-134")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    for name in DATABASES:
+        hydro = load_device(name).coupling().hydro
+        settings, band = fit_request(Scene(), hydro)  # what a default scene with state-space radiation asks for
+        key = fit_cache_key(hydro, settings, band)
+        shipped = cache.SHIPPED_DIR / f"{key}.nc"
+        if args.quick:
+            if not shipped.is_file():
+                raise SystemExit(f"{name}: no shipped fit for today's data and settings ({shipped.name})")
+            model, _ = cache.load(key)  # type: ignore[misc]
+            print(f"{name}: shipped fit {shipped.name}, {model.n_states} states, {shipped.stat().st_size / 1e3:.0f} kB")
+            continue
+        start = time.perf_counter()
+        fit = fit_radiation(hydro, settings, cache=True, band=band)
+        path = cache.store(key, fit.model.real_modal(), fit.report, folder=cache.SHIPPED_DIR)
+        print(
+            f"{name}: {fit.model.n_states} states in {time.perf_counter() - start:.1f} s -> {path} "
+            f"({path.stat().st_size / 1e3:.0f} kB)"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,90 @@
+"""The radiation memory as the simulator applies it, against closed forms of a known state-space kernel."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.radiation.analytic import analytic_hydro, known_system, response
+from wecss.radiation import RadiationStateSpace, impulse_response
+from wecss.sim._integrators import memory_advance, memory_history
+from wecss.sim._radiation import added_mass_correction, frequency_response, from_impulse_response, from_state_space
+
+
+def test_state_space_arrays_have_the_model_response():
+    a, b, c = known_system()
+    model = RadiationStateSpace(a, b, c, ("p__Heave", "q__Heave"))
+    arrays, summary = from_state_space(model, 0.01)
+    omega = np.linspace(0.1, 20.0, 50)
+    np.testing.assert_allclose(frequency_response(arrays, omega, 0.01), response(a, b, c, omega), rtol=1e-10, atol=1e-9)
+    assert summary.states == 3  # one complex state per conjugate pair
+
+
+def test_first_order_hold_is_exact_for_a_velocity_linear_in_time():
+    """z' = lambda z + b u with u = alpha + beta t: the step update must equal the exact solution."""
+    a, b, c = known_system()
+    model = RadiationStateSpace(a, b, c, ("p__Heave", "q__Heave"))
+    h = 0.05
+    arrays, _ = from_state_space(model, h)
+    alpha, beta = np.array([0.3, -0.2]), np.array([1.0, 0.5])
+    z = np.zeros(arrays.poles.size, dtype=complex)
+    buf, pos = np.zeros((2, 2)), np.zeros(1, dtype=np.int64)
+    steps = 40
+    for n in range(steps):
+        u0, u1 = alpha + beta * n * h, alpha + beta * (n + 1) * h
+        force = memory_history(arrays, z, u0, buf, 0) + arrays.newest @ u1
+        memory_advance(arrays, z, u0, u1, buf, pos)
+    # exact: the memory force -int_0^T K(s) u(T - s) ds of the known kernel, by fine quadrature
+    t_end = steps * h
+    s = np.linspace(0.0, t_end, 200001)
+    kernel = model.kernel(s)
+    u = alpha[None] + beta[None] * (t_end - s)[:, None]
+    exact = -np.trapezoid(np.einsum("tij,tj->ti", kernel, u), s, axis=0)
+    np.testing.assert_allclose(force, exact, rtol=1e-6)
+
+
+@pytest.mark.parametrize("coarse_step", [0.01, 0.06])
+def test_convolution_arrays_reproduce_the_kernel_response(coarse_step):
+    hydro = analytic_hydro()
+    irf = impulse_response(hydro)
+    dt = 0.01
+    arrays, summary = from_impulse_response(irf, dt, coarse_step=coarse_step)
+    omega = np.linspace(0.5, 12.0, 40)
+    a, b, c = known_system()
+    exact = response(a, b, c, omega)
+    got = frequency_response(arrays, omega, dt)
+    scale = np.max(np.abs(exact))
+    assert np.max(np.abs(got - exact)) <= 5e-3 * scale
+    assert summary.entries == 4 and not summary.dropped_entries
+
+
+def test_added_mass_correction_recovers_an_offset_in_a_inf():
+    """Data whose A_inf is off by a constant: the correction is that constant."""
+    hydro = analytic_hydro()
+    a, b, c = known_system()
+    arrays, _ = from_state_space(RadiationStateSpace(a, b, c, tuple(hydro.dofs)), 0.01)
+    ds = hydro.dataset
+    offset = np.array([[3.0, 0.5], [0.5, -2.0]])
+    omega = hydro.omega[20:200:6]  # on the data's frequencies: no interpolation error
+    correction = added_mass_correction(
+        arrays, 0.01, hydro.omega, ds.added_mass.values, ds.added_mass_inf.values - offset, omega, np.ones(omega.size)
+    )
+    np.testing.assert_allclose(correction, offset, atol=1e-6)
+
+
+def test_band_limited_kernel_keeps_the_band_and_drops_the_rest():
+    hydro = analytic_hydro()
+    full = impulse_response(hydro)
+    band = impulse_response(hydro, band=(10.0, 20.0), tail=False)
+    # below the roll-off the transforms agree; K(0) loses the content above it
+    weights = np.full(full.time.size, full.dt)
+    weights[[0, -1]] *= 0.5
+    omega = np.array([2.0, 5.0, 8.0])
+    phase = np.exp(-1j * np.outer(omega, full.time)) * weights
+    for w_i, row in enumerate(phase):
+        f = np.tensordot(row, full.kernel, axes=(0, 0))
+        g = np.tensordot(row, band.kernel, axes=(0, 0))
+        assert np.abs(f.real - g.real).max() <= 0.02 * np.abs(f.real).max(), omega[w_i]
+    assert band.band == (10.0, 20.0)
+    with pytest.raises(ValueError, match="band must be"):
+        impulse_response(hydro, band=(20.0, 10.0), tail=False)

@@ -1,0 +1,98 @@
+"""Scenes: parsing, validation with clear errors, round trips through results."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from tests.sim.scenes import scene
+from wecss.sim import Scene, SceneError, compile_scene, default_scene_path, simulate
+from wecss.sim._scene import resolve_time
+
+
+def test_default_scene_is_the_issue_default():
+    sc = Scene.from_toml(default_scene_path())
+    assert sc.device.name == "m4-134"
+    assert (sc.sea.kind, sc.sea.height, sc.sea.period, sc.sea.gamma) == ("jonswap", 0.04, 1.2, 3.3)
+    assert sc.sea.duration_s == pytest.approx(120.0)
+    assert sc.dt == pytest.approx(1.2 / 200)
+    assert sc.n_steps == 20000
+    assert sc.controller.name == "damping" and sc.controller.parameters == {"damping": 6.0}
+
+
+@pytest.mark.parametrize(
+    ("value", "seconds"), [(3.0, 3.0), ("100 Tp", 120.0), ("Tp/200", 0.006), ("2.5 T", 3.0), ("0.5*Tp", 0.6)]
+)
+def test_times_in_seconds_or_relative_to_the_period(value, seconds):
+    assert resolve_time(value, 1.2, "x") == pytest.approx(seconds)
+
+
+@pytest.mark.parametrize(
+    ("sections", "message"),
+    [
+        ({"sea": {"kind": "choppy"}}, "accepted: regular, jonswap"),
+        ({"sea": {"direction": 30.0}}, "looks like degrees"),
+        ({"sea": {"duration": -5.0}}, "sea.duration must be positive"),
+        ({"sea": {"duration": "ten Tp"}}, "cannot read 'ten Tp'"),
+        ({"solver": {"dt": 30.0}}, "must be shorter than sea.duration"),
+        ({"solver": {"method": "euler"}}, "accepted: beeman, rk4, reference"),
+        ({"solver": {"method": "rk4"}}, "needs radiation.method 'state_space' or 'none'"),
+        ({"radiation": {"method": "magic"}}, "accepted: convolution, state_space, none"),
+        ({"controller": {"name": "telepathy"}}, "unknown controller 'telepathy'; available: damping"),
+        ({"controller": {"name": "damping", "parameters": {"damping": -1.0}}}, "damping must be >= 0"),
+        ({"controller": {"name": "damping", "parameters": {"gain": 1.0}}}, "unexpected keyword argument 'gain'"),
+        ({"sea": {"period": 0.1}}, "outside the hydrodynamic database"),
+        ({"sea": {"kind": "tabulated"}}, "sea.file is required"),
+        ({"sea": {"kind": "elevation", "file": "/no/such/file.txt"}}, "no file at '/no/such/file.txt'"),
+        ({"outputs": {"variables": []}}, "outputs.variables is empty"),
+        ({"outputs": {"variables": ["everything"]}}, "accepted: motion, pto"),
+        ({"sea": {"heigth": 0.1}}, "unknown keys ['heigth']; accepted: kind, height"),
+    ],
+)
+def test_bad_scenes_fail_with_clear_messages(sections, message):
+    with pytest.raises(SceneError, match=None) as info:
+        compile_scene(scene(**sections))
+    assert message in str(info.value)
+
+
+def test_unknown_device_lists_the_known_ones():
+    with pytest.raises(SceneError, match="unknown device 'm9'; known: m4-111"):
+        compile_scene(scene("m9"))
+
+
+def test_scene_round_trips_through_json_and_result_attributes(tmp_path):
+    sc = scene(sea={"duration": 2.0, "ramp": 0.5}, outputs={"variables": ["pto", "elevation"], "every": 2})
+    assert Scene.from_json(sc.to_json()) == sc
+    ds = simulate(sc)
+    again = Scene.from_json(ds.attrs["scene"])
+    assert again == sc
+    rerun = simulate(again)
+    np.testing.assert_array_equal(rerun.pto_angle.values, ds.pto_angle.values)
+    assert ds.sizes["time"] == sc.n_steps // 2 + 1
+
+
+def test_scene_from_toml_resolves_files_next_to_it(tmp_path):
+    table = tmp_path / "spectrum.txt"
+    omega = np.linspace(2.0, 12.0, 60)
+    np.savetxt(table, np.column_stack([omega, 1e-4 * np.exp(-((omega - 5.0) ** 2))]))
+    path = tmp_path / "scene.toml"
+    path.write_text(
+        '[device]\nname = "m4-111"\n[sea]\nkind = "tabulated"\nfile = "spectrum.txt"\nperiod = 1.2\n'
+        'duration = "5 Tp"\nramp = "1 Tp"\n[outputs]\nvariables = ["pto"]\n'
+    )
+    sc = Scene.from_toml(path)
+    assert sc.sea.file == str(table.resolve())
+    ds = simulate(sc)
+    assert json.loads(ds.attrs["scene"])["sea"]["kind"] == "tabulated"
+    assert ds.attrs["wave_energy_flux_source"] == "theoretical spectrum"
+
+
+def test_missing_scene_file_and_malformed_toml(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no scene file"):
+        Scene.from_toml(tmp_path / "absent.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[sea\nkind = 1")
+    with pytest.raises(SceneError, match="not valid TOML"):
+        Scene.from_toml(bad)

@@ -1,0 +1,203 @@
+"""Verification of the nonlinear simulator: rest in calm water, energy balance, convergence orders, symmetry,
+the exact frequency-domain solution in small waves, and the corrector's fallback for stiff PTO damping."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from tests.sim.scenes import compiled_with_state_space, scene
+from wecss.sim import SimulationDiverged, compile_scene, simulate
+from wecss.sim._frequency import steady_state
+from wecss.sim._kernels import accelerations, poses
+
+
+def _rms(x: np.ndarray, axis: int = 0) -> np.ndarray:
+    return np.sqrt(np.mean(np.asarray(x) ** 2, axis=axis))
+
+
+CALM = {"sea": {"kind": "calm", "period": None, "duration": 6.0, "ramp": 0.0}}
+
+
+@pytest.mark.parametrize("method", ["beeman-convolution", "beeman-state_space", "rk4-state_space"])
+def test_calm_water_stays_at_rest(method):
+    solver, radiation = method.split("-")
+    sc = scene(
+        **CALM,
+        solver={"dt": 0.006, "method": solver},
+        radiation={"method": "none" if solver == "rk4" else "convolution"},
+    )
+    compiled = compiled_with_state_space(sc) if radiation == "state_space" else compile_scene(sc)
+    ds = simulate(compiled)
+    assert ds.sizes["time"] == 1001  # 1000 steps
+    q = np.concatenate([ds.displacement.values, ds.angle.values], axis=1)
+    assert np.max(np.abs(q - q[0])) < 1e-12
+    assert np.max(np.abs(q[0, 1:])) < 1e-5  # the equilibrium is near the reference (floats in equilibrium)
+
+
+def test_energy_balance_over_an_irregular_run():
+    """Work of the excitation = PTO energy + radiated energy + change of kinetic and potential energy (0.5 %)."""
+    sc = scene(
+        sea={"duration": 40.0, "ramp": 3.0},
+        outputs={"variables": ["motion", "pto", "excitation", "radiation", "poses"]},
+    )
+    compiled = compile_scene(sc)
+    ds = simulate(compiled)
+    t = ds.time.values
+    u = np.concatenate([ds.hydro_velocity.values, ds.hydro_angular_velocity.values], axis=1)
+    exc = np.concatenate([ds.excitation_force.values, ds.excitation_moment.values], axis=1)
+    rad = np.concatenate([ds.radiation_force.values, ds.radiation_moment.values], axis=1)
+    order = list(ds.hydro_dof_linear.values) + list(ds.hydro_dof_angular.values)
+    index = [order.index(d) for d in compiled.hydro.dofs]
+    u, exc, rad = u[:, index], exc[:, index], rad[:, index]
+    work_exc = np.trapezoid(np.sum(exc * u, axis=1), t)
+    radiated = -np.trapezoid(np.sum(rad * u, axis=1), t)
+    pto = np.trapezoid(ds.pto_power.sum("pto").values, t)
+    # kinetic energy 1/2 v' M* v (M* with A_inf), potential energy of the constant static loads and the linear
+    # hydrostatic stiffness (exact for planar motion, where the rotation vector is the pitch angle)
+    p = compiled.plant
+    qs = compiled.q0 + 0.0 * np.zeros((t.size, 1))
+    lin = list(ds.dof_linear.values) + list(ds.dof_angular.values)
+    names = compiled.device.model.velocity_names
+    vel = np.concatenate([ds.velocity.values, ds.angular_velocity.values], axis=1)[:, [lin.index(n) for n in names]]
+    pos = np.concatenate([ds.displacement.values, ds.angle.values], axis=1)[:, [lin.index(n) for n in names]]
+    qs = pos  # no free base: coordinates are the velocity-space values
+    energy = np.zeros(t.size)
+    position, rotation = poses(p, np.ascontiguousarray(qs))
+    for k in (0, t.size - 1):
+        mass = accelerations(
+            p,
+            qs[k],
+            vel[k],
+            np.zeros(p.hydro_index.size),
+            np.zeros((p.hydro_index.size,) * 2),
+            np.zeros(p.pto_kind.size),
+        )[-1]
+        disp = np.concatenate([position[k] - p.com0, rotation[k]], axis=1).reshape(-1)
+        potential = -p.static_force @ disp + 0.5 * disp[p.hydro_index] @ p.hydrostatic_stiffness @ disp[p.hydro_index]
+        energy[k] = 0.5 * vel[k] @ mass @ vel[k] + potential
+    balance = pto + radiated + energy[-1] - energy[0]
+    assert work_exc > 0 and pto > 0 and radiated > 0
+    assert abs(balance - work_exc) <= 5e-3 * work_exc, (work_exc, pto, radiated, energy[-1] - energy[0])
+
+
+def _final_state(compiled, steps_per_unit: int) -> np.ndarray:
+    ds = simulate(compiled)
+    return np.concatenate(
+        [ds.displacement.values[-1], ds.angle.values[-1], ds.velocity.values[-1], ds.angular_velocity.values[-1]]
+    )
+
+
+def _observed_order(errors: list[float]) -> float:
+    return float(np.mean(np.log2(np.array(errors[:-1]) / np.array(errors[1:]))))
+
+
+def test_beeman_converges_at_second_order():
+    base = scene(sea={"kind": "regular", "height": 0.04, "period": 1.0, "duration": 3.0, "ramp": 0.0})
+    states = {}
+    for dt in (0.02, 0.01, 0.005, 0.0025, 0.000625):
+        sc = dataclasses.replace(base, solver=dataclasses.replace(base.solver, dt=dt))
+        states[dt] = _final_state(compile_scene(sc), 1)
+    reference = states[0.000625]
+    errors = [float(np.max(np.abs(states[dt] - reference))) for dt in (0.02, 0.01, 0.005, 0.0025)]
+    order = _observed_order(errors)
+    assert 1.8 <= order <= 2.3, (errors, order)
+
+
+def test_rk4_with_state_space_radiation_converges_at_fourth_order():
+    base = scene(
+        sea={"kind": "regular", "height": 0.04, "period": 1.0, "duration": 2.0, "ramp": 0.0},
+        solver={"method": "rk4"},
+        radiation={"method": "none"},
+    )
+    ref_scene = dataclasses.replace(base, solver=dataclasses.replace(base.solver, method="reference", dt=0.01))
+    reference = _final_state(compiled_with_state_space(ref_scene), 1)
+    errors = []
+    for dt in (0.02, 0.01, 0.005):
+        sc = dataclasses.replace(base, solver=dataclasses.replace(base.solver, dt=dt))
+        errors.append(float(np.max(np.abs(_final_state(compiled_with_state_space(sc), 1) - reference))))
+    order = _observed_order(errors)
+    assert 3.6 <= order <= 4.4, (errors, order)
+
+
+@pytest.mark.parametrize(
+    ("device", "pairs"), [("m4-132", [("pto_3", "pto_6")]), ("m4-134", [("pto_7", "pto_8"), ("pto_3", "pto_6")])]
+)
+def test_mirrored_floats_respond_identically(device, pairs):
+    ds = simulate(scene(device, sea={"duration": 15.0}))
+    for a, b in pairs:
+        left, right = ds.pto_angle.sel(rotary_pto=a).values, ds.pto_angle.sel(rotary_pto=b).values
+        assert _rms(left - right) <= 1e-3 * _rms(left), (a, b)
+
+
+def test_small_waves_agree_with_the_exact_frequency_domain_solution():
+    """Hs 0.004 m, periodic record of 40 s simulated twice; the second period against the steady state."""
+    repeat = 40.0
+    sc = scene(
+        sea={"height": 0.004, "duration": 2 * repeat, "d_omega": 2 * np.pi / repeat, "ramp": "5 Tp"},
+        outputs={"variables": ["pto"]},
+    )
+    compiled = compile_scene(sc)
+    ds = simulate(compiled)
+    t = ds.time.values
+    exact = steady_state(compiled, t)["pto"] + ds.pto_angle.values[0]
+    late = t >= repeat
+    error = _rms(ds.pto_angle.values[late] - exact[late]) / _rms(exact[late] - exact[late].mean(0))
+    assert np.all(error <= 0.01), error
+
+
+def test_stiff_pto_damping_falls_back_to_newton_and_converges():
+    """h c / I of order 20: the fixed-point corrector cannot contract (and Beeman would be unstable); the implicit
+    trapezoidal step, solved by Newton, must take over and still converge to the fine-step result."""
+    base = scene(sea={"duration": 6.0}, controller={"name": "damping", "parameters": {"damping": 2e4}})
+    coarse = simulate(base)
+    assert coarse.attrs["newton_corrector_steps"] > 0
+    fine = simulate(dataclasses.replace(base, solver=dataclasses.replace(base.solver, dt=0.0015)))
+    a = coarse.pto_angle.values
+    b = fine.pto_angle.interp(time=coarse.time).values
+    assert np.all(np.isfinite(a))
+    assert _rms(a - b) <= 0.02 * _rms(b)
+
+
+def test_an_unstable_controller_raises_simulation_diverged():
+    sc = scene(
+        sea={"duration": 30.0}, controller={"name": "damping", "parameters": {"damping": 0.0, "stiffness": -500.0}}
+    )
+    with pytest.raises(SimulationDiverged) as info:
+        simulate(sc)
+    assert info.value.time > 0 and info.value.step > 0
+    assert "bound" in str(info.value)
+
+
+def test_convolution_and_state_space_agree_on_the_default_scene(tmp_path, monkeypatch):
+    """The embedded default (M4 134, 20,000 steps): hinge angles within 1 % RMS, with the shipped band-limited
+    MIMO fit (an empty user cache makes sure the shipped one is used)."""
+    from wecss.sim import Scene, default_scene_path
+
+    monkeypatch.setenv("WECSS_CACHE_DIR", str(tmp_path))
+    base = Scene.from_toml(default_scene_path())
+    convolution = simulate(base)
+    state_space = simulate(
+        dataclasses.replace(base, radiation=dataclasses.replace(base.radiation, method="state_space"))
+    )
+    a, b = state_space.pto_angle.values, convolution.pto_angle.values
+    assert np.all(_rms(a - b) <= 0.01 * _rms(b)), _rms(a - b) / _rms(b)
+
+
+@pytest.mark.slow
+def test_small_waves_agree_with_the_frequency_domain_on_the_134_layout():
+    repeat = 40.0
+    sc = scene(
+        "m4-134",
+        sea={"height": 0.004, "duration": 2 * repeat, "d_omega": 2 * np.pi / repeat, "ramp": "5 Tp"},
+        outputs={"variables": ["pto"]},
+    )
+    compiled = compile_scene(sc)
+    ds = simulate(compiled)
+    t = ds.time.values
+    exact = steady_state(compiled, t)["pto"] + ds.pto_angle.values[0]
+    late = t >= repeat
+    error = _rms(ds.pto_angle.values[late] - exact[late]) / _rms(exact[late] - exact[late].mean(0))
+    assert np.all(error <= 0.01), error

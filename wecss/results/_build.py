@@ -1,0 +1,222 @@
+"""The result Dataset of a simulation (DESIGN.md "Results").
+
+Dimensions: ``time``; ``dof_linear`` / ``dof_angular`` (generalised coordinates, translations and rotations kept
+apart); ``rotary_pto`` / ``linear_pto`` and ``pto`` (all PTOs, for power); ``hydro_dof_linear`` /
+``hydro_dof_angular`` (forces and moments on the hydrodynamic DOFs); ``body`` and ``axis`` (poses).
+Only the groups the scene's outputs ask for are present; statistics over the final window are always there.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import xarray as xr
+
+from .. import __version__
+from ..attributes import apply_attrs
+from ..hydro import split_dof
+from ..multibody import JointPTO, difference
+from ..sim._kernels import hydro_velocity, poses
+from ..waves import energy_flux, energy_period, group_velocity, mean_period
+
+if TYPE_CHECKING:
+    from ..sim._compile import CompiledScene
+    from ..sim._simulate import Record
+
+_ANGULAR_LABELS = {"pitch", "roll", "yaw", "angle"}
+
+
+def dof_kinds(compiled: CompiledScene) -> tuple[list[str], np.ndarray]:
+    """Velocity names and a mask of the angular ones."""
+    model = compiled.device.model
+    names = list(model.velocity_names)
+    return names, np.array([n.split("__")[-1] in _ANGULAR_LABELS for n in names])
+
+
+def _rotary(compiled: CompiledScene) -> np.ndarray:
+    model = compiled.device.model
+    return np.array(
+        [isinstance(p, JointPTO) and model.joint(p.joint).kind == "revolute" for p in compiled.device.ptos], dtype=bool
+    )
+
+
+def _tangent(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
+    """Generalised coordinates as velocity-space values (a free base: CoM position and rotation vector)."""
+    model = compiled.device.model
+    if model.nq == model.nv:
+        return q
+    neutral = model.neutral_configuration()
+    return np.array([difference(model, neutral, row) for row in q])
+
+
+def _split(
+    ds: dict[str, Any],
+    names: list[str],
+    values: np.ndarray,
+    mask: np.ndarray,
+    lin: str,
+    ang: str,
+    dims: tuple[str, str],
+) -> None:
+    if (~mask).any():
+        ds[lin] = (("time", dims[0]), values[:, ~mask])
+    if mask.any():
+        ds[ang] = (("time", dims[1]), values[:, mask])
+
+
+def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
+    """Energy period, mean period and energy flux of the scene's sea state (for the capture width ratio)."""
+    sea = compiled.scene.sea
+    hydro = compiled.hydro
+    rho, g, depth = hydro.rho, hydro.g, hydro.water_depth
+    out: dict[str, Any] = {"sea_kind": sea.kind}
+    spectrum = compiled.spectrum
+    if spectrum is not None:
+        out["energy_period"] = energy_period(spectrum)
+        out["mean_period"] = mean_period(spectrum)
+        out["wave_energy_flux"] = energy_flux(spectrum, depth, rho, g)
+        out["wave_energy_flux_source"] = "theoretical spectrum"
+        if sea.period is not None:
+            out["peak_period"] = float(sea.period)
+        out["significant_wave_height"] = 4 * np.sqrt(spectrum.moment(0))
+    elif compiled.waves is not None:
+        w = compiled.waves
+        variance = np.abs(w.amplitude) ** 2 / 2
+        out["energy_period"] = float(2 * np.pi * np.sum(variance / w.omega) / np.sum(variance))
+        out["mean_period"] = float(2 * np.pi * np.sum(variance) / np.sum(variance * w.omega))
+        out["wave_energy_flux"] = float(rho * g * np.sum(variance * group_velocity(w.omega, depth, g)))
+        out["wave_energy_flux_source"] = "simulated wave components"
+        out["significant_wave_height"] = float(4 * np.sqrt(np.sum(variance)))
+        if sea.period is not None:
+            out["peak_period"] = float(sea.period)
+    return out
+
+
+def _notes(compiled: CompiledScene) -> list[str]:
+    notes = list(compiled.notes)
+    if compiled.device.ptos and not compiled.linear_controller:
+        notes.append("controller force held constant over each step (zero-order hold at the simulation step)")
+    return notes
+
+
+def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Dataset:
+    """The Dataset of a run from its raw record (see the module docstring)."""
+    scene = compiled.scene
+    groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
+    names, angular = dof_kinds(compiled)
+    hydro_dofs = list(compiled.hydro.dofs)
+    hydro_angular = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in hydro_dofs])
+    pto_names = [p.name for p in compiled.device.ptos]
+    rotary = _rotary(compiled)
+    data: dict[str, Any] = {}
+    coords: dict[str, Any] = {}
+    n_t = record.time.size
+    if n_t and groups:
+        coords["time"] = record.time
+    lin_names = [n for n, a in zip(names, angular, strict=True) if not a]
+    ang_names = [n for n, a in zip(names, angular, strict=True) if a]
+    if "motion" in groups:
+        _split(
+            data, names, _tangent(compiled, record.q), angular, "displacement", "angle", ("dof_linear", "dof_angular")
+        )
+        _split(data, names, record.v, angular, "velocity", "angular_velocity", ("dof_linear", "dof_angular"))
+        _split(data, names, record.a, angular, "acceleration", "angular_acceleration", ("dof_linear", "dof_angular"))
+    if "pto" in groups and pto_names:
+        _split(data, pto_names, record.x, rotary, "pto_displacement", "pto_angle", ("linear_pto", "rotary_pto"))
+        _split(data, pto_names, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("linear_pto", "rotary_pto"))
+        _split(data, pto_names, record.f, rotary, "pto_force", "pto_torque", ("linear_pto", "rotary_pto"))
+        data["pto_power"] = (("time", "pto"), -record.f * record.xd)
+    if "excitation" in groups and n_t:
+        exc = record.exc
+        _split(
+            data,
+            hydro_dofs,
+            exc,
+            hydro_angular,
+            "excitation_force",
+            "excitation_moment",
+            ("hydro_dof_linear", "hydro_dof_angular"),
+        )
+    if "radiation" in groups and n_t:
+        _split(
+            data,
+            hydro_dofs,
+            record.rad,
+            hydro_angular,
+            "radiation_force",
+            "radiation_moment",
+            ("hydro_dof_linear", "hydro_dof_angular"),
+        )
+        u = np.array([hydro_velocity(compiled.plant, qq, vv) for qq, vv in zip(record.q, record.v, strict=True)])
+        _split(
+            data,
+            hydro_dofs,
+            u,
+            hydro_angular,
+            "hydro_velocity",
+            "hydro_angular_velocity",
+            ("hydro_dof_linear", "hydro_dof_angular"),
+        )
+    if "elevation" in groups and n_t:
+        eta = compiled.waves.elevation(record.time) if compiled.waves is not None else np.zeros(n_t)
+        data["wave_elevation"] = (("time",), eta)
+    if "poses" in groups and n_t:
+        position, rotation = poses(compiled.plant, np.ascontiguousarray(record.q))
+        data["body_position"] = (("time", "body", "axis"), position)
+        data["body_rotation"] = (("time", "body", "axis"), rotation)
+        coords["body"] = list(compiled.device.model.body_names)
+        coords["axis"] = ["x", "y", "z"]
+    count = max(1.0, float(record.stats[2, 0])) if record.stats.size else 1.0
+    if pto_names:
+        data["mean_pto_power"] = (("pto",), record.stats[0] / count)
+        rms = np.sqrt(record.stats[1] / count)
+        if rotary.any():
+            data["rms_pto_angle"] = (("rotary_pto",), rms[rotary])
+        if (~rotary).any():
+            data["rms_pto_displacement"] = (("linear_pto",), rms[~rotary])
+        coords["pto"] = pto_names
+        if rotary.any():
+            coords["rotary_pto"] = [n for n, r in zip(pto_names, rotary, strict=True) if r]
+        if (~rotary).any():
+            coords["linear_pto"] = [n for n, r in zip(pto_names, rotary, strict=True) if not r]
+    for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
+        if any(dim in v[0] for v in data.values()):
+            coords[dim] = values
+    for dim, mask in (("hydro_dof_linear", ~hydro_angular), ("hydro_dof_angular", hydro_angular)):
+        if any(dim in v[0] for v in data.values()):
+            coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
+    n_steps = compiled.n_steps
+    evaluations = record.evaluations
+    attrs: dict[str, Any] = {
+        "title": f"wecss simulation of {compiled.device.name}",
+        "wecss_version": __version__,
+        "scene": scene.to_json(),
+        "device": compiled.device.name,
+        "solver": scene.solver.method,
+        "time_step": compiled.dt,
+        "n_steps": n_steps,
+        "saved_every": scene.outputs.every,
+        "statistics_window": scene.outputs.window,
+        "radiation": str(compiled.radiation_summary),
+        "controller": scene.controller.name,
+        "controller_parameters": json.dumps(scene.controller.parameters),
+        "controller_linear_gains_in_equations": int(compiled.linear_controller),
+        "numba": int(jit),
+        "run_time_s": record.run_time,
+        "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
+        "seed": scene.sea.seed,
+        "notes": "; ".join(_notes(compiled)) or "none",
+        "rho": compiled.hydro.rho,
+        "g": compiled.hydro.g,
+    }
+    if scene.solver.method == "beeman":
+        attrs["evaluations_per_step"] = float(evaluations[0]) / max(1, n_steps)
+        attrs["max_evaluations_per_step"] = int(evaluations[1])
+        attrs["newton_corrector_steps"] = int(evaluations[2])
+    elif scene.solver.method == "reference":
+        attrs["function_evaluations"] = int(evaluations[0])
+    attrs.update(sea_state_attrs(compiled))
+    ds = xr.Dataset(data, coords=coords, attrs=attrs)
+    return apply_attrs(ds)

@@ -1,0 +1,293 @@
+"""Compile a scene into flat arrays once: the plant, the radiation memory, the wave components, the controller.
+
+Everything that can fail on bad input fails here, before the time loop, with a message that says what to change.
+Whatever is dropped to save time (wave components, radiation couplings, components outside the database's
+frequencies) is written into ``notes`` and ends up in the result's attributes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import waves as wv
+from ..devices import Device
+from ..devices import available as available_devices
+from ..devices import load as load_device
+from ..hydro import HydroData
+from ..multibody import HydroCoupling, StaticModel
+from ..radiation import FitSettings
+from ._plant import Plant, build_plant
+from ._radiation import (
+    RadiationArrays,
+    RadiationSummary,
+    added_mass_correction,
+    from_impulse_response,
+    from_state_space,
+    no_radiation,
+)
+from ._scene import Scene, SceneError
+
+
+@dataclass(frozen=True, eq=False)
+class CompiledScene:
+    """A scene as arrays and ready objects (see the module docstring).
+
+    Attributes
+    ----------
+    scene : Scene
+    device : Device
+    coupling : HydroCoupling
+        The database mapped onto the model, about the bodies' centres of mass.
+    plant : Plant
+    radiation : RadiationArrays
+    radiation_summary : RadiationSummary
+    waves : WaveComponents or None
+        None in calm water.
+    spectrum : Spectrum or None
+        The sea state's spectrum (None for regular waves, measured elevations and calm water).
+    excitation : ExcitationModel or None
+    controller : object
+        The controller (``controllers.Controller``).
+    linear_controller : bool
+        The controller's linear gains act inside the equations of motion (else its force is held over each step).
+    q0 : ndarray
+        Static equilibrium, the initial configuration.
+    dt : float
+        Step [s].
+    n_steps : int
+    bounded : ndarray of int
+        Coordinates (revolute joint angles) checked against ``solver.angle_bound``.
+    notes : list of str
+        What was dropped or assumed.
+    """
+
+    scene: Scene
+    device: Device
+    coupling: HydroCoupling
+    plant: Plant
+    radiation: RadiationArrays
+    radiation_summary: RadiationSummary
+    waves: wv.WaveComponents | None
+    spectrum: wv.Spectrum | None
+    excitation: wv.ExcitationModel | None
+    controller: Any
+    linear_controller: bool
+    q0: np.ndarray
+    dt: float
+    n_steps: int
+    bounded: np.ndarray
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def hydro(self) -> HydroData:
+        """The hydrodynamic database (about the centres of mass)."""
+        return self.coupling.hydro
+
+    @property
+    def time(self) -> np.ndarray:
+        """Times of every step [s]."""
+        return np.arange(self.n_steps + 1) * self.dt
+
+
+def _device(scene: Scene) -> Device:
+    name = scene.device.name
+    if name.endswith(".toml"):
+        if not Path(name).is_file():
+            raise SceneError(f"device.name: no device spec at {name!r}")
+        return Device.from_spec(name)
+    if name not in available_devices():
+        raise SceneError(f"device.name: unknown device {name!r}; known: {', '.join(available_devices())}")
+    return load_device(name)
+
+
+def _read_columns(path: str, what: str) -> tuple[np.ndarray, np.ndarray]:
+    try:
+        table = np.loadtxt(path, delimiter="," if path.endswith(".csv") else None, ndmin=2)
+    except ValueError as err:
+        raise SceneError(f"sea.file {path!r}: cannot read two columns of numbers ({err})") from None
+    if table.shape[1] < 2:
+        raise SceneError(f"sea.file {path!r}: needs two columns ({what}); found {table.shape[1]}")
+    return table[:, 0], table[:, 1]
+
+
+def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None, wv.Spectrum | None]:
+    """The wave components of the scene's sea state (None in calm water) and its spectrum (None for regular
+    waves and measured elevations).
+
+    Raises
+    ------
+    SceneError
+        If the period lies outside the database's frequency range.
+    """
+    sea = scene.sea
+    lo, hi = float(hydro.omega[0]), float(hydro.omega[-1])
+    if sea.kind == "calm":
+        return None, None
+    if sea.period is not None and sea.kind in ("regular", "jonswap", "pierson-moskowitz"):
+        omega = 2 * np.pi / sea.period
+        if not lo <= omega <= hi:
+            raise SceneError(
+                f"sea.period {sea.period} s (omega {omega:.4g} rad/s) lies outside the hydrodynamic database's "
+                f"{lo:.4g}-{hi:.4g} rad/s (periods {2 * np.pi / hi:.4g}-{2 * np.pi / lo:.4g} s)"
+            )
+    if sea.kind == "regular":
+        return wv.regular(sea.height, sea.period, direction=sea.direction), None  # type: ignore[arg-type]
+    if sea.kind == "elevation":
+        assert sea.file is not None
+        t, eta = _read_columns(sea.file, "time [s], elevation [m]")
+        return wv.from_elevation(t, eta, energy_threshold=sea.energy_threshold), None
+    spectrum: wv.Spectrum
+    if sea.kind == "tabulated":
+        assert sea.file is not None
+        frequencies, values = _read_columns(sea.file, "omega [rad/s], S [m^2 s/rad]")
+        spectrum = wv.TabulatedSpectrum(frequencies, values)
+    else:
+        gamma = 1.0 if sea.kind == "pierson-moskowitz" else sea.gamma
+        spectrum = wv.Jonswap(sea.height, sea.period, gamma)  # type: ignore[arg-type]
+    d_omega = sea.d_omega if sea.d_omega is not None else 2 * np.pi / sea.duration_s
+    waves = wv.irregular(
+        spectrum,
+        d_omega=d_omega,
+        omega_max=hi,
+        seed=sea.seed,
+        periodic=sea.periodic,
+        energy_threshold=sea.energy_threshold,
+        direction=sea.direction,
+    )
+    return waves, spectrum
+
+
+def make_controller(scene: Scene, device: Device, dt: float) -> tuple[Any, bool]:
+    """The scene's controller, set up for the device's PTOs; True when it offers linear gains."""
+    from controllers import available, create
+
+    choice = scene.controller
+    if choice.name not in available():
+        raise SceneError(f"controller.name: unknown controller {choice.name!r}; available: {', '.join(available())}")
+    parameters = dict(choice.parameters)
+    if choice.name == "damping" and not parameters:
+        parameters = {"damping": [p.damping for p in device.ptos]}
+    try:
+        controller = create(choice.name, **parameters)
+        controller.setup(len(device.ptos), dt)
+    except (TypeError, ValueError) as err:
+        raise SceneError(f"controller {choice.name!r} with parameters {parameters}: {err}") from None
+    return controller, callable(getattr(controller, "linear_gains", None))
+
+
+def make_radiation(scene: Scene, coupling: HydroCoupling, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
+    """The radiation memory arrays of the scene's method."""
+    from ..radiation import fit_radiation, impulse_response
+
+    method = scene.radiation.method
+    n_h = len(coupling.hydro.dofs)
+    if method == "none":
+        return no_radiation(n_h)
+    if method == "convolution":
+        return from_impulse_response(
+            impulse_response(coupling.hydro), dt, coupling_threshold=scene.radiation.coupling_threshold
+        )
+    settings, band = fit_request(scene, coupling.hydro)
+    fit = fit_radiation(coupling.hydro, settings, cache=True, band=band)
+    return from_state_space(fit.model, dt)
+
+
+def fit_request(scene: Scene, hydro: HydroData) -> tuple[FitSettings, tuple[float, float] | None]:
+    """The fit settings and band (rad/s) a scene's state-space radiation asks for."""
+    top = float(hydro.omega[-1])
+    band = (scene.radiation.band * top, top) if scene.radiation.band > 0 else None
+    return FitSettings(method=scene.radiation.fit), band  # type: ignore[arg-type]
+
+
+def _added_mass_correction(
+    hydro: HydroData, radiation: RadiationArrays, dt: float, waves: wv.WaveComponents
+) -> np.ndarray:
+    inside = (waves.omega >= hydro.omega[0]) & (waves.omega <= hydro.omega[-1])
+    ds = hydro.dataset
+    return added_mass_correction(
+        radiation, dt, hydro.omega, ds.added_mass.values, ds.added_mass_inf.values,
+        waves.omega[inside], np.abs(waves.amplitude[inside]) ** 2,
+    )  # fmt: skip
+
+
+def compile_scene(scene: Scene) -> CompiledScene:
+    """Build everything the time loop needs from ``scene``.
+
+    Raises
+    ------
+    SceneError
+        On unknown names, missing files, periods outside the database, controllers that reject their parameters.
+    """
+    device = _device(scene)
+    try:
+        coupling = device.coupling(scene.device.hydro)
+    except FileNotFoundError as err:
+        raise SceneError(f"device.hydro: {err}") from None
+    hydro = coupling.hydro
+    dt = scene.dt
+    notes: list[str] = []
+    waves, spectrum = make_waves(scene, hydro)
+    excitation = None
+    if waves is not None:
+        if waves.dropped is not None and waves.dropped.count:
+            notes.append(f"wave components: {waves.dropped}")
+        ramp = wv.Ramp(scene.sea.ramp_s) if scene.sea.ramp_s > 0 else None
+        excitation = wv.excitation_model(hydro, waves, ramp=ramp)
+        if excitation.outside_share > 0:
+            notes.append(
+                "wave components outside the database's frequencies left out: "
+                f"{excitation.outside_share:.2e} of the variance"
+            )
+    controller, linear = make_controller(scene, device, dt)
+    gains = controller.linear_gains() if linear else (None, None)
+    radiation, summary = make_radiation(scene, coupling, dt)
+    correction = None
+    if waves is not None and radiation.kind != 0 and scene.radiation.consistent_added_mass:
+        correction = _added_mass_correction(hydro, radiation, dt, waves)
+        a_inf = np.abs(np.diag(hydro.dataset.added_mass_inf.values))
+        notes.append(
+            "A_inf adjusted so that the memory model reproduces the database's A(omega) over the sea state's "
+            f"frequencies: largest change {np.max(np.abs(np.diag(correction)) / a_inf):.2%} of a diagonal A_inf"
+        )
+    plant = build_plant(
+        device.model, coupling, device.ptos, hydro.g, damping=gains[0], stiffness=gains[1],
+        added_mass_correction=correction,
+    )  # fmt: skip
+    if summary.dropped_entries:
+        notes.append(
+            f"radiation couplings below {scene.radiation.coupling_threshold:g} of sqrt(peak_ii peak_jj) "
+            f"dropped: {len(summary.dropped_entries)} of {len(hydro.dofs) ** 2}"
+        )
+    if scene.solver.method == "rk4" and summary.max_pole * dt > 2.5:
+        raise SceneError(
+            f"RK4 is unstable with this state-space fit: its fastest pole |s| = {summary.max_pole:.4g} rad/s needs "
+            f"dt < {2.5 / summary.max_pole:.3g} s (given {dt:.3g} s); use 'beeman' (exact in the radiation states) "
+            "or a smaller step"
+        )
+    q0 = StaticModel(device.model, hydro.g, coupling, device.ptos).equilibrium()
+    model = device.model
+    bounded = [
+        model.coordinate_names.index(f"{j.name}__{j.labels[0]}") for j in model.ordered_joints if j.kind == "revolute"
+    ]
+    return CompiledScene(
+        scene=scene,
+        device=device,
+        coupling=coupling,
+        plant=plant,
+        radiation=radiation,
+        radiation_summary=summary,
+        waves=waves,
+        spectrum=spectrum,
+        excitation=excitation,
+        controller=controller,
+        linear_controller=linear,
+        q0=q0,
+        dt=dt,
+        n_steps=scene.n_steps,
+        bounded=np.asarray(bounded, dtype=np.int64),
+        notes=notes,
+    )

@@ -1,0 +1,126 @@
+"""Exact frequency-domain solution of the MFM equations linearised about the static equilibrium.
+
+With xi the generalised displacement from the equilibrium q0 (tangent coordinates):
+
+    [-omega^2 (M* + Bw' (A(omega) - A_inf) Bw) + i omega (C + Bw' B(omega) Bw) + K*] xi_hat = Bw' F_hat(omega)
+
+M* = B(q0)' (M + A_inf) B(q0), Bw the world-frame Jacobian of the hydro DOFs at q0, K* the static stiffness
+(hydrostatics, gravity and PTO springs, with the geometric stiffness of the static loads) plus any controller
+stiffness, C = G' diag(c) G the linear PTO damping through the PTO transmissions G. A(omega) and B(omega) are
+interpolated linearly between the database's frequencies, as the excitation is.
+
+This is the reference the nonlinear simulator must reproduce in small waves (same hydro data, same record).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..multibody import StaticModel
+from ._compile import CompiledScene
+from ._kernels import kinematics, pto_strokes, world_jacobian
+
+
+@dataclass(frozen=True)
+class LinearisedMFM:
+    """Matrices of the linearised equations (generalised coordinates, ``velocity_names`` order).
+
+    Attributes
+    ----------
+    mass, damping, stiffness : ndarray (nv, nv)
+        M* (with A_inf), the PTO damping C and K* [SI per coordinate].
+    hydro_jacobian : ndarray (n_h, nv)
+        Bw at the equilibrium: hydro DOF velocities per generalised velocity.
+    pto_jacobian : ndarray (n_pto, nv)
+        PTO stroke rates per generalised velocity.
+    """
+
+    mass: np.ndarray
+    damping: np.ndarray
+    stiffness: np.ndarray
+    hydro_jacobian: np.ndarray
+    pto_jacobian: np.ndarray
+
+
+def linearise(compiled: CompiledScene) -> LinearisedMFM:
+    """The linearised MFM matrices about the scene's static equilibrium (linear controllers only).
+
+    Raises
+    ------
+    ValueError
+        If the scene's controller offers no linear gains.
+    """
+    if not compiled.linear_controller:
+        raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
+    p = compiled.plant
+    q0 = compiled.q0
+    nv = p.twists.shape[0]
+    rot, pos, b, _, _ = kinematics(p, q0, np.zeros(nv))
+    bw = world_jacobian(rot, b)[p.hydro_index]
+    _, g = pto_strokes(p, q0, rot, pos, b)
+    # the database's own A_inf: A(omega) - A_inf is added below (the simulator's A_inf correction is not wanted here)
+    rigid = p.total_mass - compiled.coupling.expand(_correction(compiled))
+    mass = b.T @ rigid @ b
+    statics = StaticModel(compiled.device.model, compiled.hydro.g, compiled.coupling, compiled.device.ptos)
+    stiffness = statics.stiffness(q0) + g.T @ np.diag(p.pto_stiffness) @ g
+    damping = g.T @ np.diag(p.pto_damping) @ g
+    return LinearisedMFM(0.5 * (mass + mass.T), damping, stiffness, bw, g)
+
+
+def _correction(compiled: CompiledScene) -> np.ndarray:
+    """The A_inf correction the plant carries (difference between its total mass and rigid mass + database A_inf)."""
+    p = compiled.plant
+    n = p.mass.size
+    rigid = np.zeros((6 * n, 6 * n))
+    for i in range(n):
+        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = p.mass[i] * np.eye(3)
+        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = p.inertia[i]
+    extra = p.total_mass - rigid - compiled.coupling.added_mass_inf
+    index = compiled.coupling.index
+    return extra[np.ix_(index, index)]
+
+
+def _interp(omega_data: np.ndarray, values: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """Linear interpolation of (n_omega, n, n) values along the first axis."""
+    flat = values.reshape(omega_data.size, -1)
+    out = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], axis=-1)
+    return out.reshape(omega.size, *values.shape[1:])
+
+
+def frequency_response(compiled: CompiledScene, omega: np.ndarray) -> tuple[np.ndarray, LinearisedMFM]:
+    """Transfer matrix H(omega) (n_omega, nv, n_h) from hydro-DOF forces to generalised displacements, and the
+    linearised matrices."""
+    lin = linearise(compiled)
+    ds = compiled.hydro.dataset
+    omega = np.atleast_1d(np.asarray(omega, dtype=float))
+    data_omega = compiled.hydro.omega
+    added = _interp(data_omega, ds.added_mass.values, omega) - ds.added_mass_inf.values[None]
+    damping = _interp(data_omega, ds.radiation_damping.values, omega)
+    bw = lin.hydro_jacobian
+    z = (
+        -(omega**2)[:, None, None] * (lin.mass[None] + bw.T @ added @ bw)
+        + 1j * omega[:, None, None] * (lin.damping[None] + bw.T @ damping @ bw)
+        + lin.stiffness[None]
+    )
+    return np.linalg.solve(z, np.broadcast_to(bw.T, (omega.size, *bw.T.shape)).astype(complex)), lin
+
+
+def steady_state(compiled: CompiledScene, time: np.ndarray) -> dict[str, np.ndarray]:
+    """Steady-state linear response to the scene's waves (no ramp) at ``time`` [s].
+
+    Returns
+    -------
+    dict
+        ``displacement`` (n_t, nv) generalised displacements from the equilibrium; ``pto`` (n_t, n_pto) PTO
+        strokes from the equilibrium; ``amplitudes`` (nv, n_components) complex.
+    """
+    if compiled.excitation is None:
+        raise ValueError("calm water: the steady state is the equilibrium")
+    exc = compiled.excitation
+    h, lin = frequency_response(compiled, exc.omega)
+    amplitudes = np.einsum("wvj,jw->vw", h, exc.coefficients)
+    phase = np.exp(1j * np.outer(exc.omega, np.asarray(time, dtype=float)))
+    xi = np.real(amplitudes @ phase).T
+    return {"displacement": xi, "pto": xi @ lin.pto_jacobian.T, "amplitudes": amplitudes}

@@ -1,0 +1,336 @@
+"""Fixed-step integrators of the nonlinear MFM equations, as kernels over a chunk of steps.
+
+Beeman predictor-corrector (M4 paper Eq. 52; Beeman 1976), with a velocity-dependent force:
+
+    q_{n+1}   = q_n + h v_n + h^2/6 (4 a_n - a_{n-1})            (on SO(3) for a free base)
+    v^p_{n+1} = v_n + h/2 (3 a_n - a_{n-1})                       predictor
+    v^c_{n+1} = v_n + h/6 (2 a_{n+1} + 5 a_n - a_{n-1})            corrector, a_{n+1} = a(q_{n+1}, v^c_{n+1})
+
+The corrector is iterated until the change of a_{n+1} is below ``tol`` relative to |a_{n+1}|. When it does
+not contract (stiff PTO damping, h c / M large: for a linear damper the fixed point diverges exactly where
+Beeman's scheme itself turns unstable, h c / M > 3) the step is taken instead by the A-stable implicit
+trapezoidal rule, solved by Newton's method with a finite-difference Jacobian (second order, like Beeman); if that
+fails too the step reports failure (never a silent result).
+
+Classic RK4 on (q, v, z) with the state-space radiation states z (fourth order). Both kernels return a
+status: 0 ok, 1 non-finite state, 2 a bounded coordinate beyond its bound, 3 corrector failed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._jit import kernel, reduction_kernel
+from ._kernels import accelerations, configuration_rate, integrate_configuration, normalise_quaternions
+from ._plant import Plant
+from ._radiation import RadiationArrays
+
+OK, NOT_FINITE, OUT_OF_BOUNDS, CORRECTOR_FAILED = 0, 1, 2, 3
+
+ACCELERATION_FLOOR: float = 1e-11
+"""Absolute floor [m/s^2 or rad/s^2] of the corrector's convergence test: changes of the accelerations below it are
+round-off (static loads of order m g cancel in them), so a body at rest converges too."""
+
+
+@reduction_kernel
+def _convolve(r: RadiationArrays, buf: np.ndarray, pos: int, n_h: int) -> np.ndarray:
+    """Weighted sum of the past velocities, column by column: each past velocity of a radiating DOF is read once
+    and multiplies the (contiguous) kernel values of all the rows it drives."""
+    out = np.zeros(n_h)
+    zero = pos + r.depth + 1  # lag l sits in column zero - l (lag 1: the newest stored velocity)
+    for c in range(n_h):
+        lo = r.col[c]
+        n_rows = r.col[c + 1] - lo
+        if n_rows == 0:
+            continue
+        history = buf[c]
+        acc = np.zeros(n_rows)
+        nf = r.fine_length[c]
+        s = r.fine_start[c]
+        base = zero - nf  # column of the oldest fine lag
+        for j in range(nf):
+            u = history[base + j]
+            k0 = s + j * n_rows
+            for k in range(n_rows):
+                acc[k] += r.fine[k0 + k] * u
+        nc = r.coarse_length[c]
+        s = r.coarse_start[c]
+        base = zero - nf - r.stride * nc
+        for j in range(nc):
+            u = history[base + r.stride * j]
+            k0 = s + j * n_rows
+            for k in range(n_rows):
+                acc[k] += r.coarse[k0 + k] * u
+        for k in range(n_rows):
+            out[r.row[lo + k]] += acc[k]
+    return out
+
+
+@kernel
+def memory_history(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, buf: np.ndarray, pos: int) -> np.ndarray:
+    """Memory force at the end of the coming step without the newest-velocity term (world axes) [N, N m]."""
+    n_h = u_now.shape[0]
+    if r.kind == 1:
+        zz = r.decay * z + r.hold0 @ u_now.astype(np.complex128)
+        return -np.real(r.output @ zz)
+    if r.kind == 2:
+        return _convolve(r, buf, pos, n_h)
+    return np.zeros(n_h)
+
+
+@kernel
+def memory_advance(
+    r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray, buf: np.ndarray, pos: np.ndarray
+) -> None:
+    """Move the memory over a completed step (states, or the velocity ring buffer, one row per DOF)."""
+    if r.kind == 1:
+        z[:] = r.decay * z + r.hold0 @ u_now.astype(np.complex128) + r.hold1 @ u_new.astype(np.complex128)
+    elif r.kind == 2:
+        k = (pos[0] + 1) % r.depth
+        buf[:, k] = u_new
+        buf[:, k + r.depth] = u_new
+        pos[0] = k
+
+
+@kernel
+def _record(
+    n1: int,
+    save_every: int,
+    stats_start: int,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    x: np.ndarray,
+    xd: np.ndarray,
+    f: np.ndarray,
+    rad: np.ndarray,
+    exc: np.ndarray,
+    out_q: np.ndarray,
+    out_v: np.ndarray,
+    out_a: np.ndarray,
+    out_x: np.ndarray,
+    out_xd: np.ndarray,
+    out_f: np.ndarray,
+    out_rad: np.ndarray,
+    out_exc: np.ndarray,
+    save_index: np.ndarray,
+    stats: np.ndarray,
+) -> None:
+    if save_every > 0 and n1 % save_every == 0 and save_index[0] < out_q.shape[0]:
+        j = save_index[0]
+        out_q[j] = q
+        out_v[j] = v
+        out_a[j] = a
+        out_x[j] = x
+        out_xd[j] = xd
+        out_f[j] = f
+        out_rad[j] = rad
+        out_exc[j] = exc
+        save_index[0] = j + 1
+    if n1 >= stats_start:
+        stats[0] += -f * xd
+        stats[1] += x * x
+        stats[2] += 1.0
+
+
+@kernel
+def _out_of_bounds(q: np.ndarray, bounded: np.ndarray, bound: float) -> bool:
+    for k in bounded:
+        if abs(q[k]) > bound:
+            return True
+    return False
+
+
+@kernel
+def beeman_chunk(
+    p: Plant,
+    r: RadiationArrays,
+    excitation: np.ndarray,
+    command: np.ndarray,
+    h: float,
+    step0: int,
+    tol: float,
+    max_iter: int,
+    bounded: np.ndarray,
+    bound: float,
+    q: np.ndarray,
+    v: np.ndarray,
+    acc: np.ndarray,
+    acc_prev: np.ndarray,
+    z: np.ndarray,
+    u_now: np.ndarray,
+    buf: np.ndarray,
+    pos: np.ndarray,
+    pto_now: np.ndarray,
+    save_every: int,
+    stats_start: int,
+    out_q: np.ndarray,
+    out_v: np.ndarray,
+    out_a: np.ndarray,
+    out_x: np.ndarray,
+    out_xd: np.ndarray,
+    out_f: np.ndarray,
+    out_rad: np.ndarray,
+    out_exc: np.ndarray,
+    save_index: np.ndarray,
+    stats: np.ndarray,
+    iterations: np.ndarray,
+) -> tuple[int, int]:
+    """Advance ``excitation.shape[0] - 1`` Beeman steps from global step ``step0`` (state arrays updated in place).
+
+    ``excitation`` holds the excitation on the hydro DOFs at the chunk's times t_step0 ... (rows).
+    ``pto_now`` (3, n_pto) receives x, x_dot, f at the last state (for controllers). ``iterations`` accumulates
+    [corrector evaluations, largest per step, Newton steps]. Returns (status, global step of the failure).
+    """
+    nv = v.shape[0]
+    n_steps = excitation.shape[0] - 1
+    for k in range(n_steps):
+        n1 = step0 + k + 1
+        hist = memory_history(r, z, u_now, buf, pos[0])
+        base = excitation[k + 1] + hist
+        dv = h * v + h * h / 6.0 * (4.0 * acc - acc_prev)
+        q1 = integrate_configuration(p, q, dv)
+        if not np.all(np.isfinite(q1)):
+            return NOT_FINITE, n1
+        if _out_of_bounds(q1, bounded, bound):
+            return OUT_OF_BOUNDS, n1
+        known = v + h / 6.0 * (5.0 * acc - acc_prev)
+        vc = v + h / 2.0 * (3.0 * acc - acc_prev)
+        a1, u1, x1, xd1, f1, _ = accelerations(p, q1, vc, base, r.newest, command)
+        count = 1
+        converged = False
+        previous = np.inf
+        for _ in range(max_iter):
+            vc = known + h / 3.0 * a1
+            a_new, u1, x1, xd1, f1, _ = accelerations(p, q1, vc, base, r.newest, command)
+            count += 1
+            change = np.max(np.abs(a_new - a1))
+            scale = np.max(np.abs(a_new))
+            a1 = a_new
+            if change <= tol * scale + ACCELERATION_FLOOR:
+                converged = True
+                break
+            if change > previous or not np.isfinite(change):
+                break
+            previous = change
+        if not converged:
+            # Stiff step (h |dA/dv| / 3 > 1, where Beeman itself is unstable): the A-stable implicit trapezoidal
+            # step q1 = q + h/2 (v + v1), v1 = v + h/2 (a + a(q1, v1)), by Newton with a finite-difference Jacobian.
+            vc = v + h * acc
+            for _ in range(max_iter):
+                q1 = integrate_configuration(p, q, 0.5 * h * (v + vc))
+                a_v = accelerations(p, q1, vc, base, r.newest, command)[0]
+                residual = vc - v - 0.5 * h * (acc + a_v)
+                jac = np.eye(nv)
+                for c in range(nv):
+                    eps = 1e-7 * (1.0 + abs(vc[c]))
+                    vp = vc.copy()
+                    vp[c] += eps
+                    qp = integrate_configuration(p, q, 0.5 * h * (v + vp))
+                    a_p = accelerations(p, qp, vp, base, r.newest, command)[0]
+                    jac[:, c] -= 0.5 * h * (a_p - a_v) / eps
+                count += nv + 1
+                iterations[2] += 1
+                delta = np.linalg.solve(jac, -residual)
+                vc = vc + delta
+                if not np.all(np.isfinite(vc)):
+                    return NOT_FINITE, n1
+                if np.max(np.abs(delta)) <= tol * np.max(np.abs(vc)) + h / 3.0 * ACCELERATION_FLOOR:
+                    converged = True
+                    break
+            if not converged:
+                return CORRECTOR_FAILED, n1
+            q1 = integrate_configuration(p, q, 0.5 * h * (v + vc))
+            a1, u1, x1, xd1, f1, _mass = accelerations(p, q1, vc, base, r.newest, command)
+            count += 1
+        if not np.all(np.isfinite(vc)):
+            return NOT_FINITE, n1
+        iterations[0] += count
+        iterations[1] = max(iterations[1], count)
+        rad = hist + r.newest @ u1
+        memory_advance(r, z, u_now, u1, buf, pos)
+        u_now[:] = u1
+        q[:] = q1
+        v[:] = vc
+        acc_prev[:] = acc
+        acc[:] = a1
+        pto_now[0] = x1
+        pto_now[1] = xd1
+        pto_now[2] = f1
+        _record(
+            n1, save_every, stats_start, q, v, acc, x1, xd1, f1, rad, excitation[k + 1],
+            out_q, out_v, out_a, out_x, out_xd, out_f, out_rad, out_exc, save_index, stats,
+        )  # fmt: skip
+    return OK, step0 + n_steps
+
+
+@kernel
+def _rk4_rates(p: Plant, r: RadiationArrays, q: np.ndarray, v: np.ndarray, z: np.ndarray, exc: np.ndarray, command):
+    rad = -np.real(r.output @ z)
+    n_h = exc.shape[0]
+    a, u, x, xd, f, _mass = accelerations(p, q, v, exc + rad, np.zeros((n_h, n_h)), command)
+    qd = configuration_rate(p, q, v)
+    zd = r.poles * z + r.input @ u.astype(np.complex128)
+    return qd, a, zd, x, xd, f, rad
+
+
+@kernel
+def rk4_chunk(
+    p: Plant,
+    r: RadiationArrays,
+    excitation: np.ndarray,
+    command: np.ndarray,
+    h: float,
+    step0: int,
+    bounded: np.ndarray,
+    bound: float,
+    q: np.ndarray,
+    v: np.ndarray,
+    acc: np.ndarray,
+    z: np.ndarray,
+    pto_now: np.ndarray,
+    save_every: int,
+    stats_start: int,
+    out_q: np.ndarray,
+    out_v: np.ndarray,
+    out_a: np.ndarray,
+    out_x: np.ndarray,
+    out_xd: np.ndarray,
+    out_f: np.ndarray,
+    out_rad: np.ndarray,
+    out_exc: np.ndarray,
+    save_index: np.ndarray,
+    stats: np.ndarray,
+    iterations: np.ndarray,
+) -> tuple[int, int]:
+    """Advance ``(excitation.shape[0] - 1) // 2`` RK4 steps; ``excitation`` rows are at half steps from t_step0."""
+    n_steps = (excitation.shape[0] - 1) // 2
+    for k in range(n_steps):
+        n1 = step0 + k + 1
+        e0 = excitation[2 * k]
+        em = excitation[2 * k + 1]
+        e1 = excitation[2 * k + 2]
+        qd1, a1, zd1, _, _, _, _ = _rk4_rates(p, r, q, v, z, e0, command)
+        qd2, a2, zd2, _, _, _, _ = _rk4_rates(p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command)
+        qd3, a3, zd3, _, _, _, _ = _rk4_rates(p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command)
+        qd4, a4, zd4, _, _, _, _ = _rk4_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command)
+        q[:] = q + h / 6.0 * (qd1 + 2.0 * qd2 + 2.0 * qd3 + qd4)
+        normalise_quaternions(p, q)
+        v[:] = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+            return NOT_FINITE, n1
+        if _out_of_bounds(q, bounded, bound):
+            return OUT_OF_BOUNDS, n1
+        _, a_new, _, x1, xd1, f1, rad = _rk4_rates(p, r, q, v, z, e1, command)
+        iterations[0] += 5
+        iterations[1] = 5
+        acc[:] = a_new
+        pto_now[0] = x1
+        pto_now[1] = xd1
+        pto_now[2] = f1
+        _record(
+            n1, save_every, stats_start, q, v, acc, x1, xd1, f1, rad, e1,
+            out_q, out_v, out_a, out_x, out_xd, out_f, out_rad, out_exc, save_index, stats,
+        )  # fmt: skip
+    return OK, step0 + n_steps

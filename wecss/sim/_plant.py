@@ -1,0 +1,212 @@
+"""The multibody device, its hydrostatics and its PTOs as flat arrays (the part of a compiled scene that the
+equations of motion read).
+
+Built once per scene from a :class:`~wecss.devices.Device` and its :class:`~wecss.multibody.HydroCoupling`; the
+kernels in ``_kernels`` read only these arrays.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from ..multibody import ActuatorPTO, HydroCoupling, JointPTO, Multibody, integrate, kinematics
+from ..multibody._pto import PTO
+
+
+class Plant(NamedTuple):
+    """Flat arrays of a device (all SI; Cartesian vectors hold 6 entries per body, see ``wecss.multibody``).
+
+    Tree (bodies in the model's order; ``order`` is the topological order)
+        order, parent, free, col_start, n_cols, q_start : int arrays (n_body,)
+        com0 : (n_body, 3) centres of mass at the reference configuration [m]
+        twists : (nv, 6) joint twists in the world frame at the reference configuration (unused for free joints)
+        chain : (n_body, nv) 1.0 where a velocity moves the body
+    Mass
+        mass : (n_body,) [kg]; inertia : (n_body, 3, 3) [kg m^2]
+        total_mass : (6n, 6n) rigid mass plus infinite-frequency added mass
+        active : Cartesian rows that can move (found by probing the kinematics; all others stay zero in B)
+        active_mass : total_mass on the active rows and columns
+    Hydrostatics
+        hydro_index : (n_h,) Cartesian index of each hydro DOF
+        hydrostatic_stiffness : (n_h, n_h) about the centres of mass [N/m, N m/rad, ...]
+        static_force : (6n,) gravity plus equilibrium buoyancy, world axes [N]
+    PTOs (n_pto)
+        pto_kind : 0 joint, 1 actuator; pto_coordinate, pto_velocity : joint coordinate / velocity index (joint PTOs)
+        pto_body_a, pto_body_b : body index or -1 for the ground (actuators)
+        pto_point_a, pto_point_b : (n_pto, 3) end point relative to the body's centre of mass in body axes, or the
+        world point for the ground [m]
+        pto_rest : stroke where the device spring is slack [m or rad]
+        pto_spring : device spring stiffness, always present [N/m or N m/rad]
+        pto_damping, pto_stiffness : gains of a linear controller applied inside the equations of motion
+    """
+
+    order: np.ndarray
+    parent: np.ndarray
+    free: np.ndarray
+    col_start: np.ndarray
+    n_cols: np.ndarray
+    q_start: np.ndarray
+    com0: np.ndarray
+    twists: np.ndarray
+    chain: np.ndarray
+    mass: np.ndarray
+    inertia: np.ndarray
+    total_mass: np.ndarray
+    active: np.ndarray
+    active_mass: np.ndarray
+    hydro_index: np.ndarray
+    hydrostatic_stiffness: np.ndarray
+    static_force: np.ndarray
+    pto_kind: np.ndarray
+    pto_coordinate: np.ndarray
+    pto_velocity: np.ndarray
+    pto_body_a: np.ndarray
+    pto_body_b: np.ndarray
+    pto_point_a: np.ndarray
+    pto_point_b: np.ndarray
+    pto_rest: np.ndarray
+    pto_spring: np.ndarray
+    pto_damping: np.ndarray
+    pto_stiffness: np.ndarray
+
+
+def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
+    n = len(model.bodies)
+    col_start = np.zeros(n, dtype=np.int64)
+    n_cols = np.zeros(n, dtype=np.int64)
+    q_start = np.zeros(n, dtype=np.int64)
+    free = np.zeros(n, dtype=np.int64)
+    twists = np.zeros((model.nv, 6))
+    iq = iv = 0
+    for i in model.order:
+        joint = model.joints[model.joint_of[i]]
+        col_start[i], n_cols[i], q_start[i] = iv, joint.nv, iq
+        if joint.kind == "free":
+            free[i] = 1
+        elif joint.kind == "planar":
+            c0 = model.bodies[i].center_of_mass
+            twists[iv] = [1.0, 0, 0, 0, 0, 0]
+            twists[iv + 1] = [0, 0, 1.0, 0, 0, 0]
+            twists[iv + 2] = [*np.cross(c0, [0.0, 1.0, 0.0]), 0.0, 1.0, 0.0]
+        elif joint.nv:
+            twists[iv : iv + joint.nv] = joint.twists
+        iq += joint.nq
+        iv += joint.nv
+    chain = np.zeros((n, model.nv))
+    for i in model.order:
+        if model.parent[i] >= 0:
+            chain[i] = chain[model.parent[i]]
+        chain[i, col_start[i] : col_start[i] + n_cols[i]] = 1.0
+    return {
+        "order": np.asarray(model.order, dtype=np.int64),
+        "parent": np.asarray(model.parent, dtype=np.int64),
+        "free": free,
+        "col_start": col_start,
+        "n_cols": n_cols,
+        "q_start": q_start,
+        "com0": np.array([b.center_of_mass for b in model.bodies]),
+        "twists": twists,
+        "chain": chain,
+    }
+
+
+def _pto_arrays(model: Multibody, ptos: tuple[PTO, ...]) -> dict[str, np.ndarray]:
+    n = len(ptos)
+    out = {
+        "pto_kind": np.zeros(n, dtype=np.int64),
+        "pto_coordinate": np.full(n, -1, dtype=np.int64),
+        "pto_velocity": np.full(n, -1, dtype=np.int64),
+        "pto_body_a": np.full(n, -1, dtype=np.int64),
+        "pto_body_b": np.full(n, -1, dtype=np.int64),
+        "pto_point_a": np.zeros((n, 3)),
+        "pto_point_b": np.zeros((n, 3)),
+        "pto_rest": np.zeros(n),
+        "pto_spring": np.zeros(n),
+    }
+    names = model.body_names
+    for k, pto in enumerate(ptos):
+        out["pto_spring"][k] = pto.stiffness
+        out["pto_rest"][k] = pto.rest
+        if isinstance(pto, JointPTO):
+            joint = model.joint(pto.joint)
+            if joint.kind not in ("revolute", "prismatic"):
+                raise ValueError(
+                    f"PTO {pto.name!r}: joint {pto.joint!r} is {joint.kind}; it needs a revolute or prismatic joint"
+                )
+            label = f"{joint.name}__{joint.labels[0]}"
+            out["pto_coordinate"][k] = model.coordinate_names.index(label)
+            out["pto_velocity"][k] = model.velocity_names.index(label)
+        elif isinstance(pto, ActuatorPTO):
+            out["pto_kind"][k] = 1
+            for end, body, point in (("a", pto.body_a, pto.point_a), ("b", pto.body_b, pto.point_b)):
+                if body is None:
+                    out[f"pto_point_{end}"][k] = point
+                else:
+                    i = names.index(body)
+                    out[f"pto_body_{end}"][k] = i
+                    out[f"pto_point_{end}"][k] = point - model.bodies[i].center_of_mass
+    return out
+
+
+def moving_rows(model: Multibody, probes: int = 4) -> np.ndarray:
+    """Cartesian rows (6 per body) of B and Bdot that are non-zero at some configuration: evaluated at random
+    configurations and velocities, where a row that can move does so generically."""
+    rng = np.random.default_rng(0)
+    moving = np.zeros(6 * len(model.bodies), dtype=bool)
+    for _ in range(probes):
+        q = integrate(model, model.neutral_configuration(), rng.uniform(-1.0, 1.0, model.nv))
+        st = kinematics(model, q, rng.standard_normal(model.nv))
+        assert st.Bdot is not None
+        moving |= (np.abs(st.B) > 1e-12).any(axis=1) | (np.abs(st.Bdot) > 1e-12).any(axis=1)
+    return np.flatnonzero(moving).astype(np.int64)
+
+
+def build_plant(
+    model: Multibody,
+    coupling: HydroCoupling | None,
+    ptos: tuple[PTO, ...],
+    g: float,
+    *,
+    damping: np.ndarray | None = None,
+    stiffness: np.ndarray | None = None,
+    added_mass_correction: np.ndarray | None = None,
+) -> Plant:
+    """Flat arrays of ``model`` with its hydrostatics (None: none), gravity ``g`` [m/s^2] and PTOs.
+
+    ``damping`` and ``stiffness`` (one per PTO) are the gains of a linear controller applied inside the
+    equations of motion (default zero: the controller's force is held over each step instead).
+    ``added_mass_correction`` (n_h, n_h) is added to A_inf (see ``_radiation.added_mass_correction``).
+    """
+    n = len(model.bodies)
+    inertia = np.array([b.inertia for b in model.bodies])
+    mass = np.array([b.mass for b in model.bodies])
+    rigid = np.zeros((6 * n, 6 * n))
+    static = coupling.buoyancy.copy() if coupling is not None else np.zeros(6 * n)
+    for i in range(n):
+        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = mass[i] * np.eye(3)
+        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = inertia[i]
+        static[6 * i + 2] -= mass[i] * g
+    index = np.asarray(coupling.index if coupling is not None else [], dtype=np.int64)
+    added = coupling.added_mass_inf if coupling is not None else 0.0
+    if added_mass_correction is not None and coupling is not None:
+        added = added + coupling.expand(added_mass_correction)
+    stiffness_h = coupling.stiffness[np.ix_(index, index)] if coupling is not None else np.zeros((0, 0))
+    n_pto = len(ptos)
+    total = rigid + added
+    active = moving_rows(model)
+    return Plant(
+        **_tree_arrays(model),
+        mass=mass,
+        inertia=inertia,
+        total_mass=total,
+        active=active,
+        active_mass=np.ascontiguousarray(total[np.ix_(active, active)]),
+        hydro_index=index,
+        hydrostatic_stiffness=np.ascontiguousarray(stiffness_h),
+        static_force=static,
+        **_pto_arrays(model, ptos),
+        pto_damping=np.zeros(n_pto) if damping is None else np.asarray(damping, dtype=float),
+        pto_stiffness=np.zeros(n_pto) if stiffness is None else np.asarray(stiffness, dtype=float),
+    )

@@ -1,0 +1,316 @@
+"""Radiation memory as flat arrays for the time loop: a discretised state-space model or a sparse convolution.
+
+Both give the memory force at the end of a step as ``history + newest @ u_new``: a part fixed by the past
+(computed once per step) plus a constant matrix on the new hydro velocity, so a corrector only repeats the
+small product (DESIGN.md, "Radiation memory").
+
+State space, in complex modal form (one state per real pole or conjugate pair): z_dot = lambda z + b u,
+F = -Re(c z). Over a step the velocity is taken linear in time (first-order hold), which the exponential
+integrates exactly: z1 = e^{lambda h} z0 + h (phi1 - phi2) b u0 + h phi2 b u1, phi1 = (e - 1)/(lambda h),
+phi2 = (e - 1 - lambda h)/(lambda h)^2. Unconditionally stable and second order, like the Beeman scheme.
+
+Convolution, by the trapezoidal rule on the simulation step, entry by entry: each kernel entry whose peak is at
+least ``coupling_threshold`` of sqrt(peak_ii peak_jj) keeps its own memory (MEMORY_FACTOR times its 1 %
+truncation time); the others are dropped (reported).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from ..radiation import ImpulseResponse, RadiationStateSpace
+from ..radiation._convolution import MEMORY_FACTOR
+
+FINE_MEMORY: float = 3.0
+"""Convolution lags up to this time [s] use every simulation step (the kernel changes fast near t = 0)."""
+
+COARSE_STEP: float = 0.06
+"""Step [s] of the trapezoidal rule for older lags, where the kernel is smooth. On the default scene (M4 134, Tp
+1.2 s, dt 6 ms) the hinge angles differ from the every-step rule by 4.4e-4 of their RMS (0.03 s: 1.1e-4), at a
+fifth of the cost."""
+
+
+class RadiationArrays(NamedTuple):
+    """Arrays of the radiation memory read by the integrators (``kind``: 0 none, 1 state space, 2 convolution).
+
+    State space: ``poles`` (nz,), ``input`` (nz, n_h), ``output`` (n_h, nz) complex (F = -Re(output z)),
+    ``decay`` e^{lambda h}, ``hold0``, ``hold1`` (nz, n_h) the first-order-hold input matrices.
+    Convolution, grouped by the radiating DOF (column) c, whose kept entries have rows ``row[col[c]:col[c + 1]]``:
+    a fine part (lags 1 ... ``fine_length[c]``) stored from ``fine_start[c]`` as a (lag, row) block, oldest lag
+    first, and a coarse tail (every ``stride``-th lag after the fine part, ``coarse_length[c]`` lags) stored the same
+    way in ``coarse``; values carry the quadrature weights and the sign (force = sum of value * velocity), and
+    entries with a shorter memory are padded with zeros. ``depth``: length of the velocity ring buffer.
+    Both: ``newest`` (n_h, n_h), the memory force per unit new velocity.
+    """
+
+    kind: int
+    poles: np.ndarray
+    input: np.ndarray
+    output: np.ndarray
+    decay: np.ndarray
+    hold0: np.ndarray
+    hold1: np.ndarray
+    row: np.ndarray
+    col: np.ndarray
+    fine_start: np.ndarray
+    fine_length: np.ndarray
+    coarse_start: np.ndarray
+    coarse_length: np.ndarray
+    fine: np.ndarray
+    coarse: np.ndarray
+    stride: int
+    depth: int
+    newest: np.ndarray
+
+
+@dataclass(frozen=True)
+class RadiationSummary:
+    """What a radiation model kept: states or memory steps, and the dropped couplings."""
+
+    method: str
+    states: int = 0
+    entries: int = 0
+    dropped_entries: tuple[str, ...] = ()
+    memory: float = 0.0
+    max_pole: float = 0.0
+    multiply_adds: int = 0
+    stride: int = 1
+
+    def __str__(self) -> str:
+        if self.method == "none":
+            return "no radiation memory"
+        if self.method == "state_space":
+            return f"state space, {self.states} complex modal states, fastest pole at {self.max_pole:.4g} rad/s"
+        dropped = f"; dropped {len(self.dropped_entries)} couplings below the threshold" if self.dropped_entries else ""
+        return (
+            f"convolution, {self.entries} kernel entries, longest memory {self.memory:.4g} s, every {self.stride}-th "
+            f"step beyond the first {FINE_MEMORY:g} s, {self.multiply_adds} multiply-adds per step{dropped}"
+        )
+
+
+def _empty(n_h: int, kind: int, newest: np.ndarray) -> dict:
+    c0 = np.zeros((0, n_h), dtype=complex)
+    return {
+        "kind": kind,
+        "poles": np.zeros(0, dtype=complex),
+        "input": c0,
+        "output": np.zeros((n_h, 0), dtype=complex),
+        "decay": np.zeros(0, dtype=complex),
+        "hold0": c0,
+        "hold1": c0,
+        "row": np.zeros(0, dtype=np.int64),
+        "col": np.zeros(0, dtype=np.int64),
+        "fine_start": np.zeros(0, dtype=np.int64),
+        "fine_length": np.zeros(0, dtype=np.int64),
+        "coarse_start": np.zeros(0, dtype=np.int64),
+        "coarse_length": np.zeros(0, dtype=np.int64),
+        "fine": np.zeros(0),
+        "coarse": np.zeros(0),
+        "stride": 1,
+        "depth": 1,
+        "newest": newest,
+    }
+
+
+def no_radiation(n_h: int) -> tuple[RadiationArrays, RadiationSummary]:
+    """No memory force (for tests of the mechanics alone)."""
+    return RadiationArrays(**_empty(n_h, 0, np.zeros((n_h, n_h)))), RadiationSummary("none")
+
+
+def _phi(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """phi1 = (e^z - 1)/z and phi2 = (e^z - 1 - z)/z^2, by series for small |z|."""
+    small = np.abs(z) < 1e-3
+    zs = np.where(small, 1.0, z)
+    phi1 = np.where(small, 1 + z / 2 + z**2 / 6 + z**3 / 24, np.expm1(zs) / zs)
+    phi2 = np.where(small, 0.5 + z / 6 + z**2 / 24 + z**3 / 120, (np.expm1(zs) - zs) / zs**2)
+    return phi1, phi2
+
+
+def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
+    """Complex modal, first-order-hold discretisation of ``model`` for the step ``dt`` [s]."""
+    n_h = len(model.dofs)
+    lam, left, right = model.modal()
+    tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)
+    keep = lam.imag >= -tol  # one of each conjugate pair, and the real poles
+    pair = lam.imag > tol
+    lam = lam[keep]
+    factor = np.where(pair[keep], 2.0, 1.0)
+    output = left[:, keep] * factor[None, :]
+    inp = right[keep]
+    phi1, phi2 = _phi(lam * dt)
+    hold1 = (dt * phi2)[:, None] * inp
+    hold0 = (dt * (phi1 - phi2))[:, None] * inp
+    arrays = _empty(n_h, 1, -np.real(output @ hold1))
+    arrays.update(
+        poles=lam.astype(complex),
+        input=np.ascontiguousarray(inp, dtype=complex),
+        output=np.ascontiguousarray(output, dtype=complex),
+        decay=np.exp(lam * dt),
+        hold0=np.ascontiguousarray(hold0),
+        hold1=np.ascontiguousarray(hold1),
+    )
+    max_pole = float(np.max(np.abs(lam))) if lam.size else 0.0
+    return RadiationArrays(**arrays), RadiationSummary("state_space", states=int(lam.size), max_pole=max_pole)
+
+
+def from_impulse_response(
+    irf: ImpulseResponse,
+    dt: float,
+    *,
+    coupling_threshold: float = 1e-3,
+    memory_factor: float = MEMORY_FACTOR,
+    fine_memory: float = FINE_MEMORY,
+    coarse_step: float = COARSE_STEP,
+) -> tuple[RadiationArrays, RadiationSummary]:
+    """Sparse trapezoidal convolution on the step ``dt`` [s] (see the module docstring).
+
+    Parameters
+    ----------
+    coupling_threshold : float
+        Entries whose kernel peak is below this share of sqrt(peak_ii peak_jj) (the geometric mean of the two
+        diagonal peaks, which makes it independent of units) are dropped [-].
+    memory_factor : float
+        Memory of each entry as a multiple of its 1 % truncation time (at most the kernel's length).
+    fine_memory : float
+        Lags up to this time [s] use every step; older lags use the trapezoidal rule on a coarser grid.
+    coarse_step : float
+        Step of that coarser grid [s] (rounded to a whole number of steps; 0 for no coarse tail).
+    """
+    if not dt > 0:
+        raise ValueError(f"dt must be positive [s]; got {dt!r}")
+    if not 0 <= coupling_threshold < 1:
+        raise ValueError(
+            f"coupling_threshold is a share of the largest diagonal peak in [0, 1); got {coupling_threshold!r}"
+        )
+    n_h = len(irf.dofs)
+    peak = np.max(np.abs(irf.kernel), axis=0)
+    diagonal = np.diag(peak)
+    kept = peak >= coupling_threshold * np.sqrt(np.outer(diagonal, diagonal))
+    t_max = float(irf.time[-1])
+    stride = max(1, round(coarse_step / dt))
+    n_fine = max(1, int(np.ceil(fine_memory / dt / stride)) * stride)  # a multiple of the stride
+    memory = np.minimum(memory_factor * irf.truncation_time, t_max)
+    n_lags = np.maximum(1, np.ceil(memory / dt).astype(np.int64))
+    # fine lags 1..min(n_lags, n_fine); coarse lags n_fine + stride * k, k = 1..K, up to the entry's memory
+    n_coarse = np.where(n_lags > n_fine, np.ceil((n_lags - n_fine) / stride).astype(np.int64), 0)
+    longest = int(np.max(np.where(kept, np.minimum(n_lags, n_fine) + stride * n_coarse, 1)))
+    kernel = irf.at(np.arange(longest + 1) * dt)  # (lags, n_h, n_h), lag 0 first
+    rows: list[int] = []
+    col_ptr = [0]
+    fine_start, fine_length, coarse_start, coarse_length = [], [], [], []
+    fine_values: list[np.ndarray] = []
+    coarse_values: list[np.ndarray] = []
+    dropped: list[str] = []
+    newest = np.zeros((n_h, n_h))
+    f0 = c0 = 0
+    for j in range(n_h):
+        members = [i for i in range(n_h) if kept[i, j]]
+        dropped.extend(f"{irf.dofs[i]}|{irf.dofs[j]}" for i in range(n_h) if not kept[i, j])
+        nf = int(max((min(n_lags[i, j], n_fine) for i in members), default=0))
+        nc = int(max((n_coarse[i, j] for i in members), default=0))
+        fine = np.zeros((nf, len(members)))
+        coarse = np.zeros((nc, len(members)))
+        for k, i in enumerate(members):
+            nf_i = int(min(n_lags[i, j], n_fine))
+            nc_i = int(n_coarse[i, j])
+            w_fine = np.full(nf_i, dt)
+            w_coarse = np.full(nc_i, stride * dt)
+            if nc_i:
+                w_fine[-1] = 0.5 * dt + 0.5 * stride * dt  # junction of the two grids
+                w_coarse[-1] = 0.5 * stride * dt
+            else:
+                w_fine[-1] = 0.5 * dt
+            lag_coarse = n_fine + stride * np.arange(1, nc_i + 1)
+            fine[nf - nf_i :, k] = (-w_fine * kernel[1 : nf_i + 1, i, j])[::-1]  # oldest first, newest last
+            coarse[nc - nc_i :, k] = (-w_coarse * kernel[lag_coarse, i, j])[::-1]
+            newest[i, j] = -0.5 * dt * kernel[0, i, j]
+        rows.extend(members)
+        col_ptr.append(len(rows))
+        fine_start.append(f0)
+        fine_length.append(nf)
+        coarse_start.append(c0)
+        coarse_length.append(nc)
+        fine_values.append(fine.reshape(-1))
+        coarse_values.append(coarse.reshape(-1))
+        f0 += fine.size
+        c0 += coarse.size
+    arrays = _empty(n_h, 2, newest)
+    ints = {k: np.asarray(v, dtype=np.int64) for k, v in (
+        ("row", rows), ("col", col_ptr), ("fine_start", fine_start), ("fine_length", fine_length),
+        ("coarse_start", coarse_start), ("coarse_length", coarse_length),
+    )}  # fmt: skip
+    arrays.update(
+        ints,
+        fine=np.concatenate(fine_values),
+        coarse=np.concatenate(coarse_values),
+        stride=stride,
+        depth=longest + 1,
+    )
+    summary = RadiationSummary(
+        "convolution",
+        entries=len(rows),
+        dropped_entries=tuple(dropped),
+        memory=longest * dt,
+        multiply_adds=int(arrays["fine"].size + arrays["coarse"].size),
+        stride=stride,
+    )
+    return RadiationArrays(**arrays), summary
+
+
+def frequency_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np.ndarray:
+    """K_hat(omega) (n_omega, n_h, n_h) of the memory model as the simulator applies it, so that the memory force
+    of a velocity Re[u e^{i omega t}] is -Re[K_hat u e^{i omega t}] (discrete sums for the convolution, the
+    continuous response for the state space)."""
+    omega = np.atleast_1d(np.asarray(omega, dtype=float))
+    n_h = arrays.newest.shape[0]
+    out = np.zeros((omega.size, n_h, n_h), dtype=complex)
+    if arrays.kind == 1:
+        resolvent = 1.0 / (1j * omega[:, None] - arrays.poles[None, :])
+        full = np.einsum("ik,wk,kj->wij", arrays.output, resolvent, arrays.input)
+        # the kept states stand for conjugate pairs: Re(c z) = (c z + conj(c z)) / 2 per pair, exactly the real part
+        # of the pair's response; this equals (full(omega) + conj(full(-omega))) / 2
+        mirror = np.einsum(
+            "ik,wk,kj->wij", arrays.output, 1.0 / (-1j * omega[:, None] - arrays.poles[None, :]), arrays.input
+        )
+        return 0.5 * (full + np.conj(mirror))
+    if arrays.kind == 2:
+        out -= arrays.newest[None]
+        for c in range(n_h):
+            members = arrays.row[arrays.col[c] : arrays.col[c + 1]]
+            nf, nc = int(arrays.fine_length[c]), int(arrays.coarse_length[c])
+            fine = arrays.fine[arrays.fine_start[c] : arrays.fine_start[c] + nf * members.size].reshape(nf, -1)
+            coarse = arrays.coarse[arrays.coarse_start[c] : arrays.coarse_start[c] + nc * members.size].reshape(nc, -1)
+            lags = np.concatenate([np.arange(nf, 0, -1), nf + arrays.stride * np.arange(nc, 0, -1)])  # oldest first
+            values = np.concatenate([fine, coarse])
+            out[:, members, c] -= np.exp(-1j * np.outer(omega, lags * dt)) @ values
+    return out
+
+
+def added_mass_correction(
+    arrays: RadiationArrays,
+    dt: float,
+    omega_data: np.ndarray,
+    added_mass: np.ndarray,
+    added_mass_inf: np.ndarray,
+    omega: np.ndarray,
+    weights: np.ndarray,
+) -> np.ndarray:
+    """Correction dA to A_inf (n_h, n_h) so that A_inf + dA + Im K_hat(omega)/omega matches the database's A(omega)
+    in the weighted least-squares sense over ``omega`` (the sea state's frequencies).
+
+    BEM codes compute A_inf separately from A(omega); the memory model implies its own A(omega) - A_inf through the
+    Kramers-Kronig relation of the damping (Ogilvie 1964), which with a finite frequency range and a fitted tail
+    is not exactly the database's. Without the correction the time-domain added mass is off by that constant.
+    """
+    response = frequency_response(arrays, omega, dt)
+    flat = added_mass.reshape(omega_data.size, -1)
+    data = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], -1).reshape(
+        response.shape
+    )
+    residual = data - added_mass_inf[None] - response.imag / omega[:, None, None]
+    w = np.asarray(weights, dtype=float) / np.sum(weights)
+    correction = np.einsum("w,wij->ij", w, residual)
+    return 0.5 * (correction + correction.T)

@@ -1,0 +1,415 @@
+"""A scene: everything one simulation needs (device, sea state, controller, solver, radiation, outputs).
+
+Declarative: a TOML file (``Scene.from_toml``) or frozen dataclasses with the same fields, validated on
+construction. Durations and steps may be given in seconds or relative to the sea state's period: ``"100 Tp"``,
+``"Tp/200"`` (``T`` for regular waves means the same). A scene round-trips through a plain dict
+(``to_dict`` / ``from_dict``), which every result stores as JSON in its ``scene`` attribute.
+
+Example (the embedded default, ``wecss/data/scenes/default.toml``)::
+
+    [device]
+    name = "m4-134"
+
+    [sea]
+    kind = "jonswap"
+    height = 0.04        # Hs [m]
+    period = 1.2         # Tp [s]
+    gamma = 3.3
+    duration = "100 Tp"
+    seed = 1
+
+    [solver]
+    method = "beeman"
+    dt = "Tp/200"
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import tomllib
+from dataclasses import asdict, dataclass, field, fields
+from pathlib import Path
+from typing import Any
+
+SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm")
+SOLVER_METHODS = ("beeman", "rk4", "reference")
+RADIATION_METHODS = ("convolution", "state_space", "none")
+OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses")
+DEFAULT_OUTPUTS = ("motion", "pto", "excitation", "elevation", "poses")
+
+
+class SceneError(ValueError):
+    """A scene is malformed; the message says which field, what was received and what is accepted."""
+
+
+_RELATIVE = re.compile(r"^\s*(?:([0-9.eE+-]+)\s*\*?\s*)?(Tp|T)\s*(?:/\s*([0-9.eE+-]+))?\s*$")
+
+
+def resolve_time(value: float | str, period: float | None, name: str) -> float:
+    """Seconds from a number [s] or a string relative to the period: ``"100 Tp"``, ``"Tp/200"``, ``"2.5 T"``.
+
+    Raises
+    ------
+    SceneError
+        On a malformed string, a relative value without a period, or a non-positive result.
+    """
+    if isinstance(value, bool):
+        raise SceneError(f"{name}: expected seconds or a multiple of Tp such as '100 Tp'; got {value!r}")
+    if isinstance(value, int | float):
+        seconds = float(value)
+    elif isinstance(value, str):
+        match = _RELATIVE.match(value)
+        if match is None:
+            raise SceneError(f"{name}: cannot read {value!r}; use seconds, 'x Tp' or 'Tp/n'")
+        if period is None:
+            raise SceneError(f"{name}: {value!r} is relative to the period, but this sea state has none; give seconds")
+        factor = float(match.group(1)) if match.group(1) else 1.0
+        divisor = float(match.group(3)) if match.group(3) else 1.0
+        seconds = factor * period / divisor
+    else:
+        raise SceneError(f"{name}: expected seconds or a string such as '100 Tp'; got {value!r}")
+    if not (math.isfinite(seconds) and seconds > 0):
+        raise SceneError(f"{name} must be positive; got {value!r} ({seconds} s)")
+    return seconds
+
+
+def _check_keys(section: str, data: dict[str, Any], cls: type) -> None:
+    known = [f.name for f in fields(cls)]
+    unknown = sorted(set(data) - set(known))
+    if unknown:
+        raise SceneError(f"[{section}]: unknown keys {unknown}; accepted: {', '.join(known)}")
+
+
+def _choice(name: str, value: str, accepted: tuple[str, ...]) -> None:
+    if value not in accepted:
+        raise SceneError(f"{name}: unknown {value!r}; accepted: {', '.join(accepted)}")
+
+
+@dataclass(frozen=True)
+class DeviceChoice:
+    """The device (catalogue name or spec TOML path) and, optionally, another hydrodynamic database."""
+
+    name: str = "m4-134"
+    hydro: str | None = None
+
+
+@dataclass(frozen=True)
+class SeaState:
+    """The waves.
+
+    Attributes
+    ----------
+    kind : {"regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm"}
+    height : float
+        Wave height H (regular) or significant wave height Hs (spectra) [m].
+    period : float
+        Wave period T (regular) or peak period Tp [s]; for tabulated spectra and measured elevations it only
+        serves durations such as "100 Tp" (optional).
+    gamma : float
+        JONSWAP peak enhancement [-].
+    duration : float or str
+        Simulated time [s] or relative ("100 Tp").
+    ramp : float or str
+        Length of the cosine ramp at the start [s] or relative ("2 Tp"); 0 for none.
+    seed : int
+        Seed of the random phases (numpy Generator).
+    periodic : bool
+        Periodic irregular record (frequencies k d_omega, repeat period 2 pi / d_omega).
+    d_omega : float or None
+        Frequency step [rad/s]; default 2 pi / duration (the record repeats once over the run).
+    direction : float
+        Direction of propagation [rad].
+    energy_threshold : float
+        Share of the variance the dropped (smallest) components may carry together [-].
+    file : str or None
+        Two-column text file: omega [rad/s] and S [m^2 s/rad] (tabulated) or time [s] and elevation [m].
+    """
+
+    kind: str = "jonswap"
+    height: float = 0.04
+    period: float | None = 1.2
+    gamma: float = 3.3
+    duration: float | str = "100 Tp"
+    ramp: float | str = "5 Tp"
+    seed: int = 1
+    periodic: bool = True
+    d_omega: float | None = None
+    direction: float = 0.0
+    energy_threshold: float = 1e-4
+    file: str | None = None
+
+    def __post_init__(self) -> None:
+        _choice("sea.kind", self.kind, SEA_KINDS)
+        if self.kind in ("regular", "jonswap", "pierson-moskowitz"):
+            if self.period is None or not self.period > 0:
+                raise SceneError(f"sea.period must be positive [s] for {self.kind} waves; got {self.period!r}")
+            if not self.height > 0:
+                raise SceneError(f"sea.height must be positive [m]; got {self.height!r}")
+        if self.kind in ("tabulated", "elevation") and not self.file:
+            raise SceneError(f"sea.file is required for {self.kind!r} seas (two columns of numbers)")
+        if self.file and not Path(self.file).is_file():
+            raise SceneError(f"sea.file: no file at {self.file!r}")
+        if self.kind == "jonswap" and not self.gamma >= 1:
+            raise SceneError(f"sea.gamma must be >= 1; got {self.gamma!r}")
+        if abs(self.direction) > 2 * math.pi:
+            raise SceneError(f"sea.direction is in radians; got {self.direction!r}, which looks like degrees")
+        if self.d_omega is not None and not self.d_omega > 0:
+            raise SceneError(f"sea.d_omega must be positive [rad/s]; got {self.d_omega!r}")
+        if not 0 <= self.energy_threshold < 1:
+            raise SceneError(f"sea.energy_threshold is a share in [0, 1); got {self.energy_threshold!r}")
+        duration = self.duration_s
+        if self.ramp not in (0, 0.0) and resolve_time(self.ramp, self.period, "sea.ramp") >= duration:
+            raise SceneError(f"sea.ramp ({self.ramp!r}) must be shorter than sea.duration ({self.duration!r})")
+
+    @property
+    def duration_s(self) -> float:
+        """Duration [s]."""
+        return resolve_time(self.duration, self.period, "sea.duration")
+
+    @property
+    def ramp_s(self) -> float:
+        """Ramp length [s] (0: none)."""
+        return 0.0 if self.ramp in (0, 0.0) else resolve_time(self.ramp, self.period, "sea.ramp")
+
+
+@dataclass(frozen=True)
+class ControllerChoice:
+    """A controller registered under the ``wecss.controllers`` entry points, with its parameters.
+
+    Without parameters, ``damping`` takes the device's PTO damping (6 N m s/rad for the M4 devices).
+    """
+
+    name: str = "damping"
+    parameters: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Solver:
+    """Time stepping.
+
+    Attributes
+    ----------
+    method : {"beeman", "rk4", "reference"}
+        Beeman predictor-corrector (paper Eq. 52), classic RK4 (state-space radiation only) or scipy's DOP853 at
+        tight tolerance (verification; state-space radiation only).
+    dt : float or str
+        Step [s] or relative ("Tp/200").
+    corrector_tol : float
+        Beeman: the corrector stops when the change of the accelerations is below this share of their size.
+    max_corrector_iterations : int
+    angle_bound : float
+        A revolute joint angle beyond this [rad] stops the run (SimulationDiverged).
+    reference_rtol : float
+        Relative tolerance of the reference solver.
+    """
+
+    method: str = "beeman"
+    dt: float | str = "Tp/200"
+    corrector_tol: float = 1e-6
+    max_corrector_iterations: int = 30
+    angle_bound: float = 1.5
+    reference_rtol: float = 1e-10
+
+    def __post_init__(self) -> None:
+        _choice("solver.method", self.method, SOLVER_METHODS)
+        if not 0 < self.corrector_tol < 1:
+            raise SceneError(f"solver.corrector_tol must lie in (0, 1); got {self.corrector_tol!r}")
+        if not (isinstance(self.max_corrector_iterations, int) and self.max_corrector_iterations >= 1):
+            raise SceneError(
+                f"solver.max_corrector_iterations must be an integer >= 1; got {self.max_corrector_iterations!r}"
+            )
+        if not 0 < self.angle_bound <= 2 * math.pi:
+            raise SceneError(f"solver.angle_bound must lie in (0, 2 pi] rad; got {self.angle_bound!r}")
+
+
+@dataclass(frozen=True)
+class Radiation:
+    """Radiation memory.
+
+    Attributes
+    ----------
+    method : {"convolution", "state_space", "none"}
+    coupling_threshold : float
+        Convolution: kernel entries whose peak is below this share of sqrt(peak_ii peak_jj) are dropped (reported)
+        [-]. Dropping by the largest diagonal peak instead would drop every pitch coupling (its units are smaller).
+    fit : {"era-mimo", "prony", "era"}
+        State space: the fit method (``wecss.radiation.FitSettings``); fits are cached on disk.
+    band : float
+        State space: fit the kernel band-limited by a cosine roll-off from ``band`` times the database's highest
+        frequency to that frequency (0: the full kernel with its fitted tail). Sea states have no energy up there;
+        the band-limited kernel needs fewer states and is fitted far better in the band that matters.
+    consistent_added_mass : bool
+        Adjust A_inf so that the memory model reproduces the database's A(omega) over the sea state's frequencies
+        (BEM's A_inf and the A(omega) implied by the damping through Kramers-Kronig differ by a constant; the
+        result's notes give the change).
+    """
+
+    method: str = "convolution"
+    coupling_threshold: float = 1e-3
+    fit: str = "era-mimo"
+    band: float = 0.6
+    consistent_added_mass: bool = True
+
+    def __post_init__(self) -> None:
+        _choice("radiation.method", self.method, RADIATION_METHODS)
+        _choice("radiation.fit", self.fit, ("era-mimo", "prony", "era"))
+        if not 0 <= self.coupling_threshold < 1:
+            raise SceneError(f"radiation.coupling_threshold is a share in [0, 1); got {self.coupling_threshold!r}")
+        if not 0 <= self.band < 1:
+            raise SceneError(f"radiation.band is a share of the highest data frequency in [0, 1); got {self.band!r}")
+
+
+@dataclass(frozen=True)
+class Outputs:
+    """What to keep.
+
+    Attributes
+    ----------
+    variables : sequence of {"motion", "pto", "excitation", "radiation", "elevation", "poses"}
+        Groups of time series; empty with ``statistics_only``.
+    every : int
+        Keep every k-th step.
+    statistics_only : bool
+        Keep no time series, only running statistics (mean PTO power and RMS stroke over the window).
+    window : float
+        Statistics over the final share of the run (0.5: the final half, as the paper) [-].
+    """
+
+    variables: tuple[str, ...] = DEFAULT_OUTPUTS
+    every: int = 1
+    statistics_only: bool = False
+    window: float = 0.5
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "variables", tuple(self.variables))
+        for v in self.variables:
+            _choice("outputs.variables", v, OUTPUT_GROUPS)
+        if not self.variables and not self.statistics_only:
+            raise SceneError("outputs.variables is empty: ask for at least one group or set statistics_only = true")
+        if not (isinstance(self.every, int) and self.every >= 1):
+            raise SceneError(f"outputs.every must be an integer >= 1; got {self.every!r}")
+        if not 0 < self.window <= 1:
+            raise SceneError(f"outputs.window is a share of the run in (0, 1]; got {self.window!r}")
+
+
+_SECTIONS: dict[str, type] = {
+    "device": DeviceChoice,
+    "sea": SeaState,
+    "controller": ControllerChoice,
+    "solver": Solver,
+    "radiation": Radiation,
+    "outputs": Outputs,
+}
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Everything one run needs. Build it from TOML (:meth:`from_toml`), a dict (:meth:`from_dict`) or directly.
+
+    Raises
+    ------
+    SceneError
+        On any malformed field (the message names it, says what was received and what is accepted).
+    """
+
+    device: DeviceChoice = field(default_factory=DeviceChoice)
+    sea: SeaState = field(default_factory=SeaState)
+    controller: ControllerChoice = field(default_factory=ControllerChoice)
+    solver: Solver = field(default_factory=Solver)
+    radiation: Radiation = field(default_factory=Radiation)
+    outputs: Outputs = field(default_factory=Outputs)
+
+    def __post_init__(self) -> None:
+        dt = self.dt
+        if dt >= self.sea.duration_s:
+            raise SceneError(f"solver.dt ({dt:.4g} s) must be shorter than sea.duration ({self.sea.duration_s:.4g} s)")
+        if self.solver.method in ("rk4", "reference") and self.radiation.method == "convolution":
+            raise SceneError(
+                f"solver.method {self.solver.method!r} needs radiation.method 'state_space' or 'none': with a "
+                "convolution the memory at the intermediate stages is not defined (it would drop the scheme to first "
+                "order); use 'beeman' for convolutions"
+            )
+
+    @property
+    def dt(self) -> float:
+        """Time step [s]."""
+        return resolve_time(self.solver.dt, self.sea.period, "solver.dt")
+
+    @property
+    def n_steps(self) -> int:
+        """Number of steps (duration / dt, rounded to the nearest integer)."""
+        return max(1, round(self.sea.duration_s / self.dt))
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], *, base: Path | None = None) -> Scene:
+        """Build a scene from nested dicts with the sections device, sea, controller, solver, radiation, outputs.
+
+        ``base``: folder against which relative file paths are resolved.
+        """
+        if not isinstance(data, dict):
+            raise SceneError(f"a scene is a table of sections; got {type(data).__name__}")
+        unknown = sorted(set(data) - set(_SECTIONS))
+        if unknown:
+            raise SceneError(f"unknown sections {unknown}; accepted: {', '.join(_SECTIONS)}")
+        parts: dict[str, Any] = {}
+        for section, kind in _SECTIONS.items():
+            values = dict(data.get(section, {}))
+            if not isinstance(data.get(section, {}), dict):
+                raise SceneError(f"[{section}] must be a table")
+            _check_keys(section, values, kind)
+            if base is not None:
+                for key in ("file", "name", "hydro"):
+                    value = values.get(key)
+                    if isinstance(value, str) and (value.endswith((".toml", ".nc", ".out", ".txt", ".csv", ".dat"))):
+                        path = Path(value)
+                        if not path.is_absolute():
+                            values[key] = str((base / path).resolve())
+            if section == "outputs" and "variables" in values:
+                values["variables"] = tuple(values["variables"])
+            try:
+                parts[section] = kind(**values)
+            except TypeError as err:  # wrong types reaching comparisons
+                raise SceneError(f"[{section}]: {err}") from None
+        return cls(**parts)
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> Scene:
+        """Read a scene TOML file (relative file paths are taken from the file's folder).
+
+        Raises
+        ------
+        FileNotFoundError
+            If the file does not exist.
+        SceneError
+            On malformed TOML or fields.
+        """
+        path = Path(path)
+        if not path.is_file():
+            raise FileNotFoundError(f"no scene file at {str(path)!r}")
+        try:
+            data = tomllib.loads(path.read_text())
+        except tomllib.TOMLDecodeError as err:
+            raise SceneError(f"{path}: not valid TOML: {err}") from None
+        return cls.from_dict(data, base=path.parent)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Nested plain dict (round-trips through :meth:`from_dict`)."""
+        out = asdict(self)
+        out["outputs"]["variables"] = list(out["outputs"]["variables"])
+        return out
+
+    def to_json(self) -> str:
+        """JSON text of :meth:`to_dict` (stored in results)."""
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    @classmethod
+    def from_json(cls, text: str) -> Scene:
+        """Inverse of :meth:`to_json`."""
+        return cls.from_dict(json.loads(text))
+
+
+def default_scene_path() -> Path:
+    """The embedded default scene (M4 134, JONSWAP Hs 0.04 m, Tp 1.2 s, 100 Tp, dt Tp/200, damping 6)."""
+    return Path(__file__).resolve().parent.parent / "data" / "scenes" / "default.toml"
