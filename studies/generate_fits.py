@@ -1,11 +1,12 @@
 """Generate the state-space radiation fits shipped with wecss (``wecss/data/radiation``): the band-limited MIMO
 Hankel-SVD fits that ``radiation.method = "state_space"`` uses with its defaults, for the shipped M4 databases.
 
-A scene finds them through the radiation cache (same key: a hash of the radiation data and the fit settings), so
-that the first state-space run of a shipped layout does not spend minutes fitting. They are stored in real modal
-form (block-diagonal A, same kernel to rounding), compressed.
+A scene finds them through the radiation cache (same key: a hash of the radiation data, the fit settings and the
+band), so that the first state-space run of a shipped layout does not spend minutes fitting. The key does not
+change when the fitting code does: rerun this script after changing ``wecss.radiation._fit``. They are stored in
+real modal form (block-diagonal A, same kernel to rounding), compressed.
 
-    python studies/generate_fits.py           # fit (or take from the user's cache) m4-111, m4-132, m4-134
+    python studies/generate_fits.py           # fit m4-111, m4-132, m4-134 afresh (minutes each)
     python studies/generate_fits.py --quick   # check that every shipped fit matches today's data and settings
 """
 
@@ -39,7 +40,7 @@ def main() -> None:
             print(f"{name}: shipped fit {shipped.name}, {model.n_states} states, {shipped.stat().st_size / 1e3:.0f} kB")
             continue
         start = time.perf_counter()
-        fit = fit_radiation(hydro, settings, cache=True, band=band)
+        fit = fit_radiation(hydro, settings, band=band)  # a fresh fit: the cache would return the shipped one
         path = cache.store(key, fit.model.real_modal(), fit.report, folder=cache.SHIPPED_DIR)
         print(
             f"{name}: {fit.model.n_states} states in {time.perf_counter() - start:.1f} s -> {path} "

@@ -58,6 +58,28 @@ def test_convolution_arrays_reproduce_the_kernel_response(coarse_step):
     assert summary.entries == 4 and not summary.dropped_entries
 
 
+@pytest.mark.parametrize("coarse_step", [0.01, 0.06])
+def test_the_loop_convolution_applies_the_arrays_response(coarse_step):
+    """Drive a sinusoid through memory_history / memory_advance (the ring buffer wraps many times) and compare the
+    force with -Re[K_hat U exp(i omega t)] from frequency_response: the buffer indexing and the arrays agree."""
+    hydro = analytic_hydro()
+    dt = 0.01
+    arrays, _ = from_impulse_response(impulse_response(hydro), dt, coarse_step=coarse_step)
+    omega, amplitude = 3.0, np.array([1.0, 0.4 - 0.3j])
+    buf = np.zeros((2, 2 * arrays.depth))
+    pos = np.zeros(1, dtype=np.int64)
+    z = np.zeros(0, dtype=complex)
+    steps = 3 * arrays.depth + 17
+    for n in range(steps):
+        u_now = np.real(amplitude * np.exp(1j * omega * n * dt))
+        u_new = np.real(amplitude * np.exp(1j * omega * (n + 1) * dt))
+        force = memory_history(arrays, z, u_now, buf, int(pos[0])) + arrays.newest @ u_new
+        memory_advance(arrays, z, u_now, u_new, buf, pos)
+    k_hat = frequency_response(arrays, np.array([omega]), dt)[0]
+    expected = -np.real(k_hat @ amplitude * np.exp(1j * omega * steps * dt))
+    np.testing.assert_allclose(force, expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
+
+
 def test_added_mass_correction_recovers_an_offset_in_a_inf():
     """Data whose A_inf is off by a constant: the correction is that constant."""
     hydro = analytic_hydro()
@@ -86,5 +108,7 @@ def test_band_limited_kernel_keeps_the_band_and_drops_the_rest():
         g = np.tensordot(row, band.kernel, axes=(0, 0))
         assert np.abs(f.real - g.real).max() <= 0.02 * np.abs(f.real).max(), omega[w_i]
     assert band.band == (10.0, 20.0)
+    # the content above the roll-off is gone: K(0) = (2/pi) int B is smaller by the part beyond 10 rad/s
+    assert np.all(np.diag(band.kernel[0]) < np.diag(full.kernel[0]))
     with pytest.raises(ValueError, match="band must be"):
         impulse_response(hydro, band=(20.0, 10.0), tail=False)

@@ -49,6 +49,13 @@ def test_times_in_seconds_or_relative_to_the_period(value, seconds):
         ({"outputs": {"variables": []}}, "outputs.variables is empty"),
         ({"outputs": {"variables": ["everything"]}}, "accepted: motion, pto"),
         ({"sea": {"heigth": 0.1}}, "unknown keys ['heigth']; accepted: kind, height"),
+        ({"solver": {"dt": "Tp/0"}}, "divides by zero"),
+        ({"solver": {"dt": "1e Tp"}}, "cannot read '1e Tp'"),
+        ({"sea": {"periodic": "no"}}, "sea.periodic must be bool"),
+        ({"sea": {"seed": 1.5}}, "sea.seed must be int"),
+        ({"outputs": {"variables": "pto"}}, "outputs.variables must be a list"),
+        ({"outputs": {"statistics_only": "false"}}, "outputs.statistics_only must be bool"),
+        ({"controller": {"parameters": [1, 2]}}, "controller.parameters must be dict"),
     ],
 )
 def test_bad_scenes_fail_with_clear_messages(sections, message):
@@ -62,7 +69,13 @@ def test_unknown_device_lists_the_known_ones():
         compile_scene(scene("m9"))
 
 
-def test_scene_round_trips_through_json_and_result_attributes(tmp_path):
+def test_sections_must_be_tables_and_zero_ramps_are_allowed():
+    with pytest.raises(SceneError, match=r"\[sea\] must be a table"):
+        Scene.from_dict({"sea": 5})
+    assert scene(sea={"ramp": "0 Tp"}).sea.ramp_s == 0.0
+
+
+def test_scene_round_trips_through_json_and_result_attributes():
     sc = scene(sea={"duration": 2.0, "ramp": 0.5}, outputs={"variables": ["pto", "elevation"], "every": 2})
     assert Scene.from_json(sc.to_json()) == sc
     ds = simulate(sc)

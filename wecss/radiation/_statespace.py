@@ -125,8 +125,8 @@ class RadiationStateSpace:
         return np.linalg.eigvalsh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))[:, 0]
 
     def real_modal(self) -> RadiationStateSpace:
-        """The same kernel in real modal form: A block-diagonal with [[s, w], [-w, s]] per conjugate pair (and s per
-        real pole), so that A is sparse and the model is small to store."""
+        """The same kernel in real modal form: A block-diagonal with [[s, -w], [w, s]] per conjugate pair s +- i w
+        (and s per real pole), so that A is sparse and the model is small to store."""
         lam, left, right = self.modal()
         blocks, b_rows, c_cols = [], [], []
         tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)

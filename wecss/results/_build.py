@@ -25,14 +25,22 @@ if TYPE_CHECKING:
     from ..sim._compile import CompiledScene
     from ..sim._simulate import Record
 
-_ANGULAR_LABELS = {"pitch", "roll", "yaw", "angle"}
-
 
 def dof_kinds(compiled: CompiledScene) -> tuple[list[str], np.ndarray]:
-    """Velocity names and a mask of the angular ones."""
+    """Velocity names and a mask of the angular ones (by joint kind: revolute joints and the rotations of planar
+    and free bases are angular)."""
     model = compiled.device.model
-    names = list(model.velocity_names)
-    return names, np.array([n.split("__")[-1] in _ANGULAR_LABELS for n in names])
+    angular: list[bool] = []
+    for joint in model.ordered_joints:
+        if joint.kind == "revolute":
+            angular.append(True)
+        elif joint.kind == "planar":
+            angular += [False, False, True]
+        elif joint.kind == "free":
+            angular += [False] * 3 + [True] * 3
+        else:
+            angular += [False] * joint.nv
+    return list(model.velocity_names), np.array(angular, dtype=bool)
 
 
 def _rotary(compiled: CompiledScene) -> np.ndarray:
@@ -51,9 +59,8 @@ def _tangent(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
     return np.array([difference(model, neutral, row) for row in q])
 
 
-def _split(
+def _split(  # one variable per kind: translations [m ...] under ``lin``, rotations [rad ...] under ``ang``
     ds: dict[str, Any],
-    names: list[str],
     values: np.ndarray,
     mask: np.ndarray,
     lin: str,
@@ -118,22 +125,19 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
     lin_names = [n for n, a in zip(names, angular, strict=True) if not a]
     ang_names = [n for n, a in zip(names, angular, strict=True) if a]
     if "motion" in groups:
-        _split(
-            data, names, _tangent(compiled, record.q), angular, "displacement", "angle", ("dof_linear", "dof_angular")
-        )
-        _split(data, names, record.v, angular, "velocity", "angular_velocity", ("dof_linear", "dof_angular"))
-        _split(data, names, record.a, angular, "acceleration", "angular_acceleration", ("dof_linear", "dof_angular"))
+        _split(data, _tangent(compiled, record.q), angular, "displacement", "angle", ("dof_linear", "dof_angular"))
+        _split(data, record.v, angular, "velocity", "angular_velocity", ("dof_linear", "dof_angular"))
+        _split(data, record.a, angular, "acceleration", "angular_acceleration", ("dof_linear", "dof_angular"))
     if "pto" in groups and pto_names:
-        _split(data, pto_names, record.x, rotary, "pto_displacement", "pto_angle", ("linear_pto", "rotary_pto"))
-        _split(data, pto_names, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("linear_pto", "rotary_pto"))
-        _split(data, pto_names, record.f, rotary, "pto_force", "pto_torque", ("linear_pto", "rotary_pto"))
-        data["pto_power"] = (("time", "pto"), -record.f * record.xd)
+        _split(data, record.x, rotary, "pto_displacement", "pto_angle", ("linear_pto", "rotary_pto"))
+        _split(data, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("linear_pto", "rotary_pto"))
+        _split(data, record.f, rotary, "pto_force", "pto_torque", ("linear_pto", "rotary_pto"))
+        # absorbed power: the device spring's force -k x is conservative and left out
+        data["pto_power"] = (("time", "pto"), -(record.f + compiled.plant.pto_spring * record.x) * record.xd)
     if "excitation" in groups and n_t:
-        exc = record.exc
         _split(
             data,
-            hydro_dofs,
-            exc,
+            record.exc,
             hydro_angular,
             "excitation_force",
             "excitation_moment",
@@ -142,7 +146,6 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
     if "radiation" in groups and n_t:
         _split(
             data,
-            hydro_dofs,
             record.rad,
             hydro_angular,
             "radiation_force",
@@ -152,7 +155,6 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
         u = np.array([hydro_velocity(compiled.plant, qq, vv) for qq, vv in zip(record.q, record.v, strict=True)])
         _split(
             data,
-            hydro_dofs,
             u,
             hydro_angular,
             "hydro_velocity",
@@ -171,7 +173,8 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
     count = max(1.0, float(record.stats[2, 0])) if record.stats.size else 1.0
     if pto_names:
         data["mean_pto_power"] = (("pto",), record.stats[0] / count)
-        rms = np.sqrt(record.stats[1] / count)
+        mean = record.stats[3] / count
+        rms = np.sqrt(np.maximum(record.stats[1] / count - mean**2, 0.0))  # about the window's mean, as the metric
         if rotary.any():
             data["rms_pto_angle"] = (("rotary_pto",), rms[rotary])
         if (~rotary).any():

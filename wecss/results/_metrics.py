@@ -48,12 +48,15 @@ def _mean(da: xr.DataArray) -> xr.DataArray:
 def mean_power(ds: xr.Dataset, window: Window = None) -> xr.DataArray:
     """Mean absorbed power per PTO over the window [W].
 
-    Without time series (``statistics_only`` runs), the running statistic ``mean_pto_power`` is returned.
+    Without time series (``statistics_only`` runs), the running statistic ``mean_pto_power`` (over the scene's
+    ``outputs.window``) is returned; another window then raises ValueError.
     """
     if "pto_power" not in ds:
-        if "mean_pto_power" in ds:
-            return ds.mean_pto_power
-        raise ValueError("the dataset has neither pto_power nor mean_pto_power (ask for the 'pto' outputs)")
+        if "mean_pto_power" not in ds:
+            raise ValueError("the dataset has neither pto_power nor mean_pto_power (ask for the 'pto' outputs)")
+        if window is not None:
+            raise ValueError("the dataset holds no time series, only mean_pto_power over the scene's outputs.window")
+        return ds.mean_pto_power
     out = _mean(_window(ds, window).pto_power)
     out.attrs = {"long_name": "mean absorbed power", "units": "W"}
     return out
@@ -116,6 +119,8 @@ def rms_hinge_angle(ds: xr.Dataset, window: Window = None) -> xr.DataArray:
     """RMS of each rotary PTO's angle about its mean over the window [rad] (paper Fig. 8)."""
     if "pto_angle" not in ds:
         if "rms_pto_angle" in ds:
+            if window is not None:
+                raise ValueError("the dataset holds no time series, only rms_pto_angle over the scene's outputs.window")
             return ds.rms_pto_angle
         raise ValueError("the dataset has no rotary PTO angles (ask for the 'pto' outputs)")
     angle = _window(ds, window).pto_angle

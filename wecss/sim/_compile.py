@@ -7,6 +7,7 @@ frequencies) is written into ``notes`` and ends up in the result's attributes.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -54,6 +55,8 @@ class CompiledScene:
         The controller (``controllers.Controller``).
     linear_controller : bool
         The controller's linear gains act inside the equations of motion (else its force is held over each step).
+    statics : StaticModel
+        Gravity, hydrostatics and the PTO springs (device springs plus the controller's linear stiffness).
     q0 : ndarray
         Static equilibrium, the initial configuration.
     dt : float
@@ -76,6 +79,7 @@ class CompiledScene:
     excitation: wv.ExcitationModel | None
     controller: Any
     linear_controller: bool
+    statics: StaticModel
     q0: np.ndarray
     dt: float
     n_steps: int
@@ -205,8 +209,10 @@ def fit_request(scene: Scene, hydro: HydroData) -> tuple[FitSettings, tuple[floa
 
 def _added_mass_correction(
     hydro: HydroData, radiation: RadiationArrays, dt: float, waves: wv.WaveComponents
-) -> np.ndarray:
+) -> np.ndarray | None:
     inside = (waves.omega >= hydro.omega[0]) & (waves.omega <= hydro.omega[-1])
+    if not inside.any():
+        return None
     ds = hydro.dataset
     return added_mass_correction(
         radiation, dt, hydro.omega, ds.added_mass.values, ds.added_mass_inf.values,
@@ -248,11 +254,13 @@ def compile_scene(scene: Scene) -> CompiledScene:
     correction = None
     if waves is not None and radiation.kind != 0 and scene.radiation.consistent_added_mass:
         correction = _added_mass_correction(hydro, radiation, dt, waves)
-        a_inf = np.abs(np.diag(hydro.dataset.added_mass_inf.values))
-        notes.append(
-            "A_inf adjusted so that the memory model reproduces the database's A(omega) over the sea state's "
-            f"frequencies: largest change {np.max(np.abs(np.diag(correction)) / a_inf):.2%} of a diagonal A_inf"
-        )
+        if correction is not None:
+            a_inf = np.abs(np.diag(hydro.dataset.added_mass_inf.values))
+            change = np.max(np.abs(np.diag(correction)) / np.where(a_inf > 0, a_inf, np.inf))
+            notes.append(
+                "A_inf adjusted so that the memory model reproduces the database's A(omega) over the sea state's "
+                f"frequencies: largest change {change:.2%} of a diagonal A_inf"
+            )
     plant = build_plant(
         device.model, coupling, device.ptos, hydro.g, damping=gains[0], stiffness=gains[1],
         added_mass_correction=correction,
@@ -268,7 +276,13 @@ def compile_scene(scene: Scene) -> CompiledScene:
             f"dt < {2.5 / summary.max_pole:.3g} s (given {dt:.3g} s); use 'beeman' (exact in the radiation states) "
             "or a smaller step"
         )
-    q0 = StaticModel(device.model, hydro.g, coupling, device.ptos).equilibrium()
+    # the controller's linear stiffness acts about the same rest stroke as the device springs (see _kernels)
+    springs = tuple(
+        dataclasses.replace(pto, stiffness=pto.stiffness + float(k))
+        for pto, k in zip(device.ptos, plant.pto_stiffness, strict=True)
+    )
+    statics = StaticModel(device.model, hydro.g, coupling, springs)
+    q0 = statics.equilibrium()
     model = device.model
     bounded = [
         model.coordinate_names.index(f"{j.name}__{j.labels[0]}") for j in model.ordered_joints if j.kind == "revolute"
@@ -285,6 +299,7 @@ def compile_scene(scene: Scene) -> CompiledScene:
         excitation=excitation,
         controller=controller,
         linear_controller=linear,
+        statics=statics,
         q0=q0,
         dt=dt,
         n_steps=scene.n_steps,

@@ -18,9 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..multibody import StaticModel
+from ..multibody._dynamics import body_mass_matrix
 from ._compile import CompiledScene
 from ._kernels import kinematics, pto_strokes, world_jacobian
+from ._radiation import interpolate_matrices
 
 
 @dataclass(frozen=True)
@@ -61,32 +62,11 @@ def linearise(compiled: CompiledScene) -> LinearisedMFM:
     bw = world_jacobian(rot, b)[p.hydro_index]
     _, g = pto_strokes(p, q0, rot, pos, b)
     # the database's own A_inf: A(omega) - A_inf is added below (the simulator's A_inf correction is not wanted here)
-    rigid = p.total_mass - compiled.coupling.expand(_correction(compiled))
-    mass = b.T @ rigid @ b
-    statics = StaticModel(compiled.device.model, compiled.hydro.g, compiled.coupling, compiled.device.ptos)
-    stiffness = statics.stiffness(q0) + g.T @ np.diag(p.pto_stiffness) @ g
+    total = body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf
+    mass = b.T @ total @ b
+    stiffness = compiled.statics.stiffness(q0)  # device springs and the controller's stiffness included
     damping = g.T @ np.diag(p.pto_damping) @ g
     return LinearisedMFM(0.5 * (mass + mass.T), damping, stiffness, bw, g)
-
-
-def _correction(compiled: CompiledScene) -> np.ndarray:
-    """The A_inf correction the plant carries (difference between its total mass and rigid mass + database A_inf)."""
-    p = compiled.plant
-    n = p.mass.size
-    rigid = np.zeros((6 * n, 6 * n))
-    for i in range(n):
-        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = p.mass[i] * np.eye(3)
-        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = p.inertia[i]
-    extra = p.total_mass - rigid - compiled.coupling.added_mass_inf
-    index = compiled.coupling.index
-    return extra[np.ix_(index, index)]
-
-
-def _interp(omega_data: np.ndarray, values: np.ndarray, omega: np.ndarray) -> np.ndarray:
-    """Linear interpolation of (n_omega, n, n) values along the first axis."""
-    flat = values.reshape(omega_data.size, -1)
-    out = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], axis=-1)
-    return out.reshape(omega.size, *values.shape[1:])
 
 
 def frequency_response(compiled: CompiledScene, omega: np.ndarray) -> tuple[np.ndarray, LinearisedMFM]:
@@ -96,8 +76,8 @@ def frequency_response(compiled: CompiledScene, omega: np.ndarray) -> tuple[np.n
     ds = compiled.hydro.dataset
     omega = np.atleast_1d(np.asarray(omega, dtype=float))
     data_omega = compiled.hydro.omega
-    added = _interp(data_omega, ds.added_mass.values, omega) - ds.added_mass_inf.values[None]
-    damping = _interp(data_omega, ds.radiation_damping.values, omega)
+    added = interpolate_matrices(data_omega, ds.added_mass.values, omega) - ds.added_mass_inf.values[None]
+    damping = interpolate_matrices(data_omega, ds.radiation_damping.values, omega)
     bw = lin.hydro_jacobian
     z = (
         -(omega**2)[:, None, None] * (lin.mass[None] + bw.T @ added @ bw)

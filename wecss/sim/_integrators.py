@@ -97,6 +97,7 @@ def _record(
     n1: int,
     save_every: int,
     stats_start: int,
+    spring: np.ndarray,
     q: np.ndarray,
     v: np.ndarray,
     a: np.ndarray,
@@ -128,9 +129,10 @@ def _record(
         out_exc[j] = exc
         save_index[0] = j + 1
     if n1 >= stats_start:
-        stats[0] += -f * xd
+        stats[0] += -(f + spring * x) * xd  # absorbed power: the device spring's force is conservative, left out
         stats[1] += x * x
         stats[2] += 1.0
+        stats[3] += x
 
 
 @kernel
@@ -241,6 +243,10 @@ def beeman_chunk(
             if not converged:
                 return CORRECTOR_FAILED, n1
             q1 = integrate_configuration(p, q, 0.5 * h * (v + vc))
+            if not np.all(np.isfinite(q1)):
+                return NOT_FINITE, n1
+            if _out_of_bounds(q1, bounded, bound):
+                return OUT_OF_BOUNDS, n1
             a1, u1, x1, xd1, f1, _mass = accelerations(p, q1, vc, base, r.newest, command)
             count += 1
         if not np.all(np.isfinite(vc)):
@@ -258,7 +264,7 @@ def beeman_chunk(
         pto_now[1] = xd1
         pto_now[2] = f1
         _record(
-            n1, save_every, stats_start, q, v, acc, x1, xd1, f1, rad, excitation[k + 1],
+            n1, save_every, stats_start, p.pto_spring, q, v, acc, x1, xd1, f1, rad, excitation[k + 1],
             out_q, out_v, out_a, out_x, out_xd, out_f, out_rad, out_exc, save_index, stats,
         )  # fmt: skip
     return OK, step0 + n_steps
@@ -314,14 +320,16 @@ def rk4_chunk(
         qd2, a2, zd2, _, _, _, _ = _rk4_rates(p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command)
         qd3, a3, zd3, _, _, _, _ = _rk4_rates(p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command)
         qd4, a4, zd4, _, _, _, _ = _rk4_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command)
-        q[:] = q + h / 6.0 * (qd1 + 2.0 * qd2 + 2.0 * qd3 + qd4)
-        normalise_quaternions(p, q)
-        v[:] = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
-        z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-            return NOT_FINITE, n1
-        if _out_of_bounds(q, bounded, bound):
+        q1 = q + h / 6.0 * (qd1 + 2.0 * qd2 + 2.0 * qd3 + qd4)
+        normalise_quaternions(p, q1)
+        v1 = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(v1))):
+            return NOT_FINITE, n1  # q, v keep the last good state
+        if _out_of_bounds(q1, bounded, bound):
             return OUT_OF_BOUNDS, n1
+        q[:] = q1
+        v[:] = v1
+        z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
         _, a_new, _, x1, xd1, f1, rad = _rk4_rates(p, r, q, v, z, e1, command)
         iterations[0] += 5
         iterations[1] = 5
@@ -330,7 +338,7 @@ def rk4_chunk(
         pto_now[1] = xd1
         pto_now[2] = f1
         _record(
-            n1, save_every, stats_start, q, v, acc, x1, xd1, f1, rad, e1,
+            n1, save_every, stats_start, p.pto_spring, q, v, acc, x1, xd1, f1, rad, e1,
             out_q, out_v, out_a, out_x, out_xd, out_f, out_rad, out_exc, save_index, stats,
         )  # fmt: skip
     return OK, step0 + n_steps

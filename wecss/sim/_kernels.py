@@ -32,16 +32,6 @@ def hat(w: np.ndarray) -> np.ndarray:
 
 
 @kernel
-def so3_exp(w: np.ndarray) -> np.ndarray:
-    theta = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
-    k = hat(w)
-    kk = k @ k
-    if theta < _SMALL:
-        return np.eye(3) + k + 0.5 * kk
-    return np.eye(3) + np.sin(theta) / theta * k + (1.0 - np.cos(theta)) / theta**2 * kk
-
-
-@kernel
 def so3_log(r: np.ndarray) -> np.ndarray:
     cos = min(1.0, max(-1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))
     theta = np.arccos(cos)
@@ -54,41 +44,6 @@ def so3_log(r: np.ndarray) -> np.ndarray:
         axis = sym[:, k].copy()
         return theta * axis / np.sqrt(np.sum(axis**2))
     return theta / np.sin(theta) * v
-
-
-@kernel
-def se3_exp(xi: np.ndarray) -> np.ndarray:
-    v = xi[:3]
-    w = xi[3:]
-    theta = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
-    k = hat(w)
-    if theta < _SMALL:
-        jac = np.eye(3) + 0.5 * k
-    else:
-        jac = np.eye(3) + (1.0 - np.cos(theta)) / theta**2 * k + (theta - np.sin(theta)) / theta**3 * (k @ k)
-    g = np.eye(4)
-    g[:3, :3] = so3_exp(w)
-    g[:3, 3] = jac @ v
-    return g
-
-
-@kernel
-def adjoint(g: np.ndarray) -> np.ndarray:
-    out = np.zeros((6, 6))
-    r = np.ascontiguousarray(g[:3, :3])
-    out[:3, :3] = r
-    out[:3, 3:] = hat(g[:3, 3].copy()) @ r
-    out[3:, 3:] = r
-    return out
-
-
-@kernel
-def bracket(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Lie bracket of twists (v, w): (w_a x v_b - w_b x v_a, w_a x w_b)."""
-    out = np.empty(6)
-    out[:3] = np.cross(a[3:], b[:3]) - np.cross(b[3:], a[:3])
-    out[3:] = np.cross(a[3:], b[3:])
-    return out
 
 
 @kernel

@@ -78,6 +78,7 @@ class RadiationSummary:
     max_pole: float = 0.0
     multiply_adds: int = 0
     stride: int = 1
+    fine_memory: float = 0.0
 
     def __str__(self) -> str:
         if self.method == "none":
@@ -87,7 +88,7 @@ class RadiationSummary:
         dropped = f"; dropped {len(self.dropped_entries)} couplings below the threshold" if self.dropped_entries else ""
         return (
             f"convolution, {self.entries} kernel entries, longest memory {self.memory:.4g} s, every {self.stride}-th "
-            f"step beyond the first {FINE_MEMORY:g} s, {self.multiply_adds} multiply-adds per step{dropped}"
+            f"step beyond the first {self.fine_memory:.4g} s, {self.multiply_adds} multiply-adds per step{dropped}"
         )
 
 
@@ -256,6 +257,7 @@ def from_impulse_response(
         memory=longest * dt,
         multiply_adds=int(arrays["fine"].size + arrays["coarse"].size),
         stride=stride,
+        fine_memory=n_fine * dt,
     )
     return RadiationArrays(**arrays), summary
 
@@ -287,6 +289,13 @@ def frequency_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) ->
             values = np.concatenate([fine, coarse])
             out[:, members, c] -= np.exp(-1j * np.outer(omega, lags * dt)) @ values
     return out
+
+
+def interpolate_matrices(omega_data: np.ndarray, values: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """Linear interpolation of (n_omega, n, n) coefficient matrices to the frequencies ``omega`` [rad/s]."""
+    flat = values.reshape(omega_data.size, -1)
+    out = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], axis=-1)
+    return out.reshape(omega.size, *values.shape[1:])
 
 
 def added_mass_correction(

@@ -65,14 +65,37 @@ def resolve_time(value: float | str, period: float | None, name: str) -> float:
             raise SceneError(f"{name}: cannot read {value!r}; use seconds, 'x Tp' or 'Tp/n'")
         if period is None:
             raise SceneError(f"{name}: {value!r} is relative to the period, but this sea state has none; give seconds")
-        factor = float(match.group(1)) if match.group(1) else 1.0
-        divisor = float(match.group(3)) if match.group(3) else 1.0
+        try:
+            factor = float(match.group(1)) if match.group(1) else 1.0
+            divisor = float(match.group(3)) if match.group(3) else 1.0
+        except ValueError:
+            raise SceneError(f"{name}: cannot read {value!r}; use seconds, 'x Tp' or 'Tp/n'") from None
+        if divisor == 0:
+            raise SceneError(f"{name}: {value!r} divides by zero")
         seconds = factor * period / divisor
     else:
         raise SceneError(f"{name}: expected seconds or a string such as '100 Tp'; got {value!r}")
     if not (math.isfinite(seconds) and seconds > 0):
         raise SceneError(f"{name} must be positive; got {value!r} ({seconds} s)")
     return seconds
+
+
+def _is_zero(value: float | str) -> bool:
+    if isinstance(value, str):
+        match = _RELATIVE.match(value)
+        try:
+            return match is not None and match.group(1) is not None and float(match.group(1)) == 0.0
+        except ValueError:
+            return False
+    return not isinstance(value, bool) and value == 0
+
+
+def _types(section: str, values: dict[str, tuple[Any, type]]) -> None:
+    """Check the types of fields read from TOML (bools are not integers here)."""
+    for key, (value, kind) in values.items():
+        wrong = not isinstance(value, kind) or (kind is int and isinstance(value, bool))
+        if wrong:
+            raise SceneError(f"{section}.{key} must be {kind.__name__}; got {value!r} ({type(value).__name__})")
 
 
 def _check_keys(section: str, data: dict[str, Any], cls: type) -> None:
@@ -93,6 +116,11 @@ class DeviceChoice:
 
     name: str = "m4-134"
     hydro: str | None = None
+
+    def __post_init__(self) -> None:
+        _types("device", {"name": (self.name, str)})
+        if self.hydro is not None:
+            _types("device", {"hydro": (self.hydro, str)})
 
 
 @dataclass(frozen=True)
@@ -159,8 +187,12 @@ class SeaState:
             raise SceneError(f"sea.d_omega must be positive [rad/s]; got {self.d_omega!r}")
         if not 0 <= self.energy_threshold < 1:
             raise SceneError(f"sea.energy_threshold is a share in [0, 1); got {self.energy_threshold!r}")
+        _types(
+            "sea",
+            {"kind": (self.kind, str), "seed": (self.seed, int), "periodic": (self.periodic, bool)},
+        )
         duration = self.duration_s
-        if self.ramp not in (0, 0.0) and resolve_time(self.ramp, self.period, "sea.ramp") >= duration:
+        if self.ramp_s >= duration:
             raise SceneError(f"sea.ramp ({self.ramp!r}) must be shorter than sea.duration ({self.duration!r})")
 
     @property
@@ -171,7 +203,7 @@ class SeaState:
     @property
     def ramp_s(self) -> float:
         """Ramp length [s] (0: none)."""
-        return 0.0 if self.ramp in (0, 0.0) else resolve_time(self.ramp, self.period, "sea.ramp")
+        return 0.0 if _is_zero(self.ramp) else resolve_time(self.ramp, self.period, "sea.ramp")
 
 
 @dataclass(frozen=True)
@@ -183,6 +215,9 @@ class ControllerChoice:
 
     name: str = "damping"
     parameters: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        _types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
 
 
 @dataclass(frozen=True)
@@ -253,6 +288,7 @@ class Radiation:
     consistent_added_mass: bool = True
 
     def __post_init__(self) -> None:
+        _types("radiation", {"consistent_added_mass": (self.consistent_added_mass, bool)})
         _choice("radiation.method", self.method, RADIATION_METHODS)
         _choice("radiation.fit", self.fit, ("era-mimo", "prony", "era"))
         if not 0 <= self.coupling_threshold < 1:
@@ -283,6 +319,9 @@ class Outputs:
     window: float = 0.5
 
     def __post_init__(self) -> None:
+        if isinstance(self.variables, str) or not isinstance(self.variables, list | tuple):
+            raise SceneError(f"outputs.variables must be a list of groups; got {self.variables!r}")
+        _types("outputs", {"statistics_only": (self.statistics_only, bool)})
         object.__setattr__(self, "variables", tuple(self.variables))
         for v in self.variables:
             _choice("outputs.variables", v, OUTPUT_GROUPS)
@@ -355,19 +394,19 @@ class Scene:
             raise SceneError(f"unknown sections {unknown}; accepted: {', '.join(_SECTIONS)}")
         parts: dict[str, Any] = {}
         for section, kind in _SECTIONS.items():
-            values = dict(data.get(section, {}))
             if not isinstance(data.get(section, {}), dict):
-                raise SceneError(f"[{section}] must be a table")
+                raise SceneError(f"[{section}] must be a table of keys; got {data[section]!r}")
+            values = dict(data.get(section, {}))
             _check_keys(section, values, kind)
             if base is not None:
                 for key in ("file", "name", "hydro"):
                     value = values.get(key)
-                    if isinstance(value, str) and (value.endswith((".toml", ".nc", ".out", ".txt", ".csv", ".dat"))):
-                        path = Path(value)
-                        if not path.is_absolute():
-                            values[key] = str((base / path).resolve())
-            if section == "outputs" and "variables" in values:
-                values["variables"] = tuple(values["variables"])
+                    # sea.file is always a path; device names and databases only when they look like one
+                    looks_like_path = key == "file" or (
+                        isinstance(value, str) and ("/" in value or value.endswith((".toml", ".nc", ".out")))
+                    )
+                    if isinstance(value, str) and looks_like_path and not Path(value).is_absolute():
+                        values[key] = str((base / value).resolve())
             try:
                 parts[section] = kind(**values)
             except TypeError as err:  # wrong types reaching comparisons

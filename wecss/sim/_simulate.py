@@ -150,8 +150,8 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
         for key, value in (("q", q), ("v", v), ("a", a0), ("x", x0), ("xd", xd0), ("f", f0), ("exc", exc0)):
             out[key][0] = value
         save_index[0] = 1
-    stats = np.zeros((3, n_pto))
-    stats_start = n - round(scene.outputs.window * n) + 1
+    stats = np.zeros((4, n_pto))  # sums over the window: absorbed power, stroke^2, count, stroke
+    stats_start = n - max(1, round(scene.outputs.window * n)) + 1
     evaluations = np.zeros(3, dtype=np.int64)
     rk4 = scene.solver.method == "rk4"
     chunk = CHUNK_STEPS if compiled.linear_controller else 1
@@ -240,9 +240,10 @@ def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
         k: np.array([row[i] for row in rows])
         for k, i in (("q", 0), ("v", 1), ("a", 3), ("x", 5), ("xd", 6), ("f", 7), ("rad", 8), ("exc", 9))
     }
-    window = saved >= saved[-1] * (1 - scene.outputs.window)
-    power = -stack["f"] * stack["xd"]
-    stats = np.stack([power[window].sum(0), (stack["x"][window] ** 2).sum(0), np.full(power.shape[1], window.sum())])
+    window = saved > saved[-1] * (1 - scene.outputs.window)
+    power = -(stack["f"] + p.pto_spring * stack["x"]) * stack["xd"]
+    x = stack["x"][window]
+    stats = np.stack([power[window].sum(0), (x**2).sum(0), np.full(power.shape[1], float(window.sum())), x.sum(0)])
     if progress:
         print(f"reference solver: {sol.nfev} evaluations", file=sys.stderr)
     return Record(saved, **stack, stats=stats, evaluations=np.array([sol.nfev, 0, 0]), run_time=run_time)
