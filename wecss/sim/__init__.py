@@ -3,6 +3,9 @@
 from ._compile import CompiledScene as CompiledScene
 from ._compile import compile_scene as compile_scene
 from ._jit import JIT as JIT
+from ._linear import LinearModel as LinearModel
+from ._linear import linearize as linearize
+from ._linear import simulate_linear as simulate_linear
 from ._scene import ControllerChoice as ControllerChoice
 from ._scene import DeviceChoice as DeviceChoice
 from ._scene import Outputs as Outputs

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..multibody._dynamics import body_mass_matrix
+from ..waves._elevation import evaluate
 from ._compile import CompiledScene
 from ._kernels import kinematics, pto_strokes, world_jacobian
 from ._radiation import interpolate_matrices
@@ -101,6 +102,5 @@ def steady_state(compiled: CompiledScene, time: np.ndarray) -> dict[str, np.ndar
     exc = compiled.excitation
     h, lin = frequency_response(compiled, exc.omega)
     amplitudes = np.einsum("wvj,jw->vw", h, exc.coefficients)
-    phase = np.exp(1j * np.outer(exc.omega, np.asarray(time, dtype=float)))
-    xi = np.real(amplitudes @ phase).T
+    xi = np.real(evaluate(amplitudes, exc.omega, np.asarray(time, dtype=float))).T
     return {"displacement": xi, "pto": xi @ lin.pto_jacobian.T, "amplitudes": amplitudes}

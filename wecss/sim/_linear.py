@@ -1,0 +1,232 @@
+"""The MFM equations linearised about the static equilibrium, as a state-space model with the radiation memory
+realised as extra states (DESIGN.md "linearise"; issue 6).
+
+States x = [xi, xi_dot, r]: generalised displacements from the equilibrium (tangent coordinates), their rates and
+the radiation states of the scene's state-space fit (real modal form). Inputs u = [F_exc, f_pto]: the excitation
+force on every hydro DOF (world axes) and a PTO force per PTO added to the linear controller's. Then
+
+    M xi_ddot = -K xi - C xi_dot + Bw' (F_exc - C_r r) + G' f_pto,     r_dot = A_r r + B_r Bw xi_dot
+
+with M = M*(q0) (A_inf with the simulator's consistency correction), K the static stiffness with its geometric
+part and the controller's linear stiffness, C = G' diag(c) G the controller's linear damping, Bw the world-frame
+Jacobian of the hydro DOFs and G the PTO transmissions at q0. The gyroscopic and Bdot terms are quadratic in the
+velocities and vanish at equilibrium.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import control
+import numpy as np
+import xarray as xr
+from scipy.linalg import expm
+
+from ..radiation import RadiationStateSpace
+from ._compile import CompiledScene, fit_request
+from ._jit import kernel
+from ._kernels import kinematics, pto_strokes, world_jacobian
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModel:
+    """A linearised device model.
+
+    Attributes
+    ----------
+    system : control.StateSpace
+        Continuous-time model with named states, inputs and outputs.
+    mass, damping, stiffness : ndarray (nv, nv)
+        M*, C and K [SI per generalised coordinate].
+    hydro_jacobian : ndarray (n_h, nv)
+        Bw at the equilibrium; ``pto_jacobian`` (n_pto, nv): G.
+    radiation : RadiationStateSpace
+        The radiation states' model (real modal form).
+    q0 : ndarray
+        The equilibrium configuration.
+    """
+
+    system: control.StateSpace
+    mass: np.ndarray
+    damping: np.ndarray
+    stiffness: np.ndarray
+    hydro_jacobian: np.ndarray
+    pto_jacobian: np.ndarray
+    radiation: RadiationStateSpace
+    q0: np.ndarray
+
+    @property
+    def n_states(self) -> int:
+        return int(self.system.nstates)
+
+    def discretise(self, dt: float, hold: str = "foh") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Exact discretisation x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1} over the step ``dt`` [s].
+
+        ``hold``: "foh" (inputs linear in time over a step: second order for smooth forcing; exact for such inputs)
+        or "zoh" (inputs held: G1 = 0, first order).
+        """
+        if hold not in ("foh", "zoh"):
+            raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
+        if not dt > 0:
+            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        a, b = np.asarray(self.system.A), np.asarray(self.system.B)
+        n, m = b.shape
+        block = np.zeros((n + 2 * m, n + 2 * m))
+        block[:n, :n] = a * dt
+        block[:n, n : n + m] = b * dt
+        block[n : n + m, n + m :] = np.eye(m)
+        e = expm(block)
+        phi, theta1, theta2 = e[:n, :n], e[:n, n : n + m], e[:n, n + m :]
+        if hold == "zoh":
+            return phi, theta1, np.zeros_like(theta1)
+        return phi, theta1 - theta2, theta2
+
+
+def _radiation_model(compiled: CompiledScene) -> RadiationStateSpace:
+    from ..radiation import fit_radiation
+
+    settings, band = fit_request(compiled.scene, compiled.hydro)
+    return fit_radiation(compiled.hydro, settings, cache=True, band=band).model.real_modal()
+
+
+def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = None) -> LinearModel:
+    """The linearised MFM model of a compiled scene about its static equilibrium.
+
+    Parameters
+    ----------
+    compiled : CompiledScene
+        Its controller's linear gains are folded into the model (other controllers act through the PTO inputs).
+    radiation : RadiationStateSpace, optional
+        Radiation states (default: the scene's state-space fit, as ``radiation.method = "state_space"`` uses it).
+
+    Returns
+    -------
+    LinearModel
+    """
+    p = compiled.plant
+    q0 = compiled.q0
+    nv = p.twists.shape[0]
+    rot, pos, b, _, _ = kinematics(p, q0, np.zeros(nv))
+    bw = world_jacobian(rot, b)[p.hydro_index]
+    _, g = pto_strokes(p, q0, rot, pos, b)
+    mass = b.T @ p.total_mass @ b
+    mass = 0.5 * (mass + mass.T)
+    stiffness = compiled.statics.stiffness(q0)
+    damping = g.T @ np.diag(p.pto_damping) @ g
+    rad = (radiation or _radiation_model(compiled)).real_modal()
+    if tuple(rad.dofs) != tuple(compiled.hydro.dofs):
+        raise ValueError(f"radiation model DOFs {rad.dofs} differ from the database's {compiled.hydro.dofs}")
+    nz = rad.n_states
+    n_h, n_pto = bw.shape[0], g.shape[0]
+    minv = np.linalg.inv(mass)
+    a = np.zeros((2 * nv + nz, 2 * nv + nz))
+    a[:nv, nv : 2 * nv] = np.eye(nv)
+    a[nv : 2 * nv, :nv] = -minv @ stiffness
+    a[nv : 2 * nv, nv : 2 * nv] = -minv @ damping
+    a[nv : 2 * nv, 2 * nv :] = -minv @ bw.T @ rad.C
+    a[2 * nv :, nv : 2 * nv] = rad.B @ bw
+    a[2 * nv :, 2 * nv :] = rad.A
+    bmat = np.zeros((2 * nv + nz, n_h + n_pto))
+    bmat[nv : 2 * nv, :n_h] = minv @ bw.T
+    bmat[nv : 2 * nv, n_h:] = minv @ g.T
+    c = np.zeros((2 * nv + 2 * n_pto, 2 * nv + nz))
+    c[:nv, :nv] = np.eye(nv)
+    c[nv : 2 * nv, nv : 2 * nv] = np.eye(nv)
+    c[2 * nv : 2 * nv + n_pto, :nv] = g
+    c[2 * nv + n_pto :, nv : 2 * nv] = g
+    names = list(compiled.device.model.velocity_names)
+    ptos = [pto.name for pto in compiled.device.ptos]
+    system = control.ss(
+        a,
+        bmat,
+        c,
+        np.zeros((c.shape[0], bmat.shape[1])),
+        states=[*names, *(f"{n}__rate" for n in names), *(f"radiation_{k}" for k in range(nz))],
+        inputs=[*(f"excitation__{d}" for d in compiled.hydro.dofs), *(f"force__{n}" for n in ptos)],
+        outputs=[
+            *names,
+            *(f"{n}__rate" for n in names),
+            *(f"stroke__{n}" for n in ptos),
+            *(f"stroke_rate__{n}" for n in ptos),
+        ],
+        name=f"{compiled.device.name} linearised",
+    )
+    return LinearModel(system, mass, damping, stiffness, bw, g, rad, q0)
+
+
+@kernel
+def _recursion(phi: np.ndarray, forcing: np.ndarray, x0: np.ndarray, keep: int) -> np.ndarray:
+    """x_{k+1} = Phi x_k + forcing_k; returns the first ``keep`` states of every x_k (k = 0 ... n)."""
+    n_t = forcing.shape[0] + 1
+    out = np.empty((n_t, keep))
+    x = x0.copy()
+    out[0] = x[:keep]
+    for k in range(n_t - 1):
+        x = phi @ x + forcing[k]
+        out[k + 1] = x[:keep]
+    return out
+
+
+def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *, hold: str = "foh") -> xr.Dataset:
+    """Open-loop time-domain run of the linear model on the scene's waves, with the exact discretisation.
+
+    Returns a Dataset laid out as :func:`wecss.sim.simulate`'s (so every metric works on both). The scene's
+    controller must have linear gains (they are folded into the model).
+
+    Raises
+    ------
+    ValueError
+        For a controller without linear gains, or a device with a free base (its coordinates are not linear).
+    """
+    import time as _time
+
+    from ..results import build_result
+    from ._jit import JIT
+    from ._simulate import Record
+
+    if not compiled.linear_controller:
+        raise ValueError("the linear simulation folds in a controller's linear gains; this controller has none")
+    if compiled.device.model.nq != compiled.device.model.nv:
+        raise ValueError("the linear simulation needs joint coordinates (no free base)")
+    model = model or linearize(compiled)
+    start = _time.perf_counter()
+    p = compiled.plant
+    nv, n_h, n_pto = model.mass.shape[0], model.hydro_jacobian.shape[0], model.pto_jacobian.shape[0]
+    time = compiled.time
+    exc = (
+        np.ascontiguousarray(compiled.excitation.force(time).T)
+        if compiled.excitation is not None
+        else np.zeros((time.size, n_h))
+    )
+    u = np.concatenate([exc, np.zeros((time.size, n_pto))], axis=1)
+    phi, g0, g1 = model.discretise(compiled.dt, hold)
+    forcing = np.ascontiguousarray(u[:-1] @ g0.T + u[1:] @ g1.T)
+    x = _recursion(np.ascontiguousarray(phi), forcing, np.zeros(phi.shape[0]), phi.shape[0])
+    run_time = _time.perf_counter() - start
+    a_full = np.asarray(model.system.A)
+    b_full = np.asarray(model.system.B)
+    xi, rate = x[:, :nv], x[:, nv : 2 * nv]
+    acc = (x @ a_full[nv : 2 * nv].T) + u @ b_full[nv : 2 * nv].T
+    rad = -(x[:, 2 * nv :] @ model.radiation.C.T)
+    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(nv))
+    stroke0, _ = pto_strokes(p, compiled.q0, rot, pos, b)
+    stroke = (stroke0 - p.pto_rest)[None] + xi @ model.pto_jacobian.T
+    stroke_rate = rate @ model.pto_jacobian.T
+    force = -(p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
+    every = compiled.scene.outputs.every
+    keep = slice(None, None, every)
+    n = compiled.n_steps
+    window = np.arange(time.size) >= n - max(1, round(compiled.scene.outputs.window * n)) + 1
+    power = -(force + p.pto_spring * stroke) * stroke_rate
+    xs = stroke[window]
+    stats = np.stack([power[window].sum(0), (xs**2).sum(0), np.full(n_pto, float(window.sum())), xs.sum(0)])
+    record = Record(
+        time[keep], (compiled.q0[None] + xi)[keep], rate[keep], acc[keep], stroke[keep], stroke_rate[keep],
+        force[keep], rad[keep], exc[keep], stats, np.zeros(3, dtype=np.int64), run_time,
+    )  # fmt: skip
+    ds = build_result(compiled, record, jit=JIT)
+    for key in ("evaluations_per_step", "max_evaluations_per_step", "newton_corrector_steps"):
+        ds.attrs.pop(key, None)
+    ds.attrs["solver"] = f"linear ({hold}, exact discretisation)"
+    ds.attrs["radiation"] = f"state space, {model.radiation.n_states} real states (linear model)"
+    return ds
