@@ -57,7 +57,69 @@ class LinearModel:
 
     @property
     def n_states(self) -> int:
+        """Number of states (2 nv + radiation states)."""
         return int(self.system.nstates)
+
+    def to_dataset(self) -> xr.Dataset:
+        """The matrices with their labels, for netCDF export (``wecss.results.save``); :meth:`from_dataset`
+        reads them back."""
+        sys = self.system
+        nv = self.mass.shape[0]
+        return xr.Dataset(
+            {
+                "A": (("state", "state_col"), np.asarray(sys.A), {"long_name": "state matrix"}),
+                "B": (("state", "input"), np.asarray(sys.B), {"long_name": "input matrix"}),
+                "C": (("output", "state"), np.asarray(sys.C), {"long_name": "output matrix"}),
+                "D": (("output", "input"), np.asarray(sys.D), {"long_name": "feedthrough matrix"}),
+                "mass": (("dof", "dof_col"), self.mass, {"long_name": "M* with A_inf at equilibrium"}),
+                "damping": (("dof", "dof_col"), self.damping, {"long_name": "linear PTO damping G' diag(c) G"}),
+                "stiffness": (
+                    ("dof", "dof_col"),
+                    self.stiffness,
+                    {"long_name": "static stiffness with geometric part"},
+                ),
+                "hydro_jacobian": (("hydro_dof", "dof"), self.hydro_jacobian),
+                "pto_jacobian": (("pto", "dof"), self.pto_jacobian),
+                "q0": (("coordinate",), self.q0, {"long_name": "static equilibrium configuration"}),
+                "radiation_A": (("radiation_state", "radiation_state_col"), self.radiation.A),
+                "radiation_B": (("radiation_state", "hydro_dof"), self.radiation.B),
+                "radiation_C": (("hydro_dof", "radiation_state"), self.radiation.C),
+            },
+            coords={
+                "state": list(sys.state_labels),
+                "input": list(sys.input_labels),
+                "output": list(sys.output_labels),
+                "dof": list(sys.state_labels[:nv]),
+                "hydro_dof": list(self.radiation.dofs),
+                "pto": [label.removeprefix("force__") for label in sys.input_labels[len(self.radiation.dofs) :]],
+            },
+            attrs={"title": sys.name, "radiation_method": self.radiation.method},
+        )
+
+    @classmethod
+    def from_dataset(cls, ds: xr.Dataset) -> LinearModel:
+        """Inverse of :meth:`to_dataset`."""
+        sys = control.ss(
+            ds.A.values,
+            ds.B.values,
+            ds.C.values,
+            ds.D.values,
+            states=[str(s) for s in ds.state.values],
+            inputs=[str(s) for s in ds.input.values],
+            outputs=[str(s) for s in ds.output.values],
+            name=str(ds.attrs.get("title", "linear model")),
+        )
+        rad = RadiationStateSpace(
+            ds.radiation_A.values.reshape(ds.sizes.get("radiation_state", 0), -1),
+            ds.radiation_B.values.reshape(ds.sizes.get("radiation_state", 0), ds.sizes["hydro_dof"]),
+            ds.radiation_C.values.reshape(ds.sizes["hydro_dof"], ds.sizes.get("radiation_state", 0)),
+            tuple(str(d) for d in ds.hydro_dof.values),
+            str(ds.attrs.get("radiation_method", "given")),
+        )
+        return cls(
+            sys, ds.mass.values, ds.damping.values, ds.stiffness.values, ds.hydro_jacobian.values,
+            ds.pto_jacobian.values.reshape(ds.sizes["pto"], -1), rad, ds.q0.values,
+        )  # fmt: skip
 
     def discretise(self, dt: float, hold: str = "foh") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Exact discretisation x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1} over the step ``dt`` [s].
