@@ -157,14 +157,26 @@ def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = N
     Parameters
     ----------
     compiled : CompiledScene
-        Its controller's linear gains are folded into the model (other controllers act through the PTO inputs).
+        Compiled with ``radiation.method = "state_space"`` (so that its A_inf correction belongs to the fit used
+        here). Its controller's linear gains are folded into the model (other controllers act through the PTO
+        inputs).
     radiation : RadiationStateSpace, optional
-        Radiation states (default: the scene's state-space fit, as ``radiation.method = "state_space"`` uses it).
+        Radiation states (default: the scene's state-space fit, the one its simulation uses).
 
     Returns
     -------
     LinearModel
+
+    Raises
+    ------
+    ValueError
+        If the scene was compiled with another radiation method and no ``radiation`` model is given.
     """
+    if radiation is None and compiled.radiation_summary.method != "state_space":
+        raise ValueError(
+            "compile the scene with radiation.method = 'state_space' to linearise it (its A_inf correction must "
+            f"belong to the radiation states used); it has {compiled.radiation_summary.method!r}"
+        )
     p = compiled.plant
     q0 = compiled.q0
     nv = p.twists.shape[0]
