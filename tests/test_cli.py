@@ -14,6 +14,8 @@ def test_info_of_a_device_prints_its_natural_periods(capsys: pytest.CaptureFixtu
     assert "float_8" in out and "mass      17.52 kg" in out
     assert "undamped natural periods with infinite-frequency added mass" in out
     assert "inf (no stiffness)  bow__surge" in out  # no mooring: surge is free
+    assert "natural periods with frequency-dependent added mass, damping ratios" in out  # the modal table
+    assert "zeta" in out
 
 
 def test_info_lists_the_shipped_databases(capsys: pytest.CaptureFixture[str]) -> None:

@@ -51,6 +51,7 @@ def _info(target: str | None) -> int:
     if path.suffix == ".toml" or target in devices.available():
         device = devices.Device.from_spec(path) if path.suffix == ".toml" else devices.load(target)
         print(device.info())
+        print(_modes(target))
         return 0
     if path.suffix == ".nc" or path.exists():
         data = hydro.HydroData.from_netcdf(path)
@@ -61,6 +62,21 @@ def _info(target: str | None) -> int:
         raise ValueError(f"{target!r} is neither a file nor a known device or database; known: {', '.join(known)}")
     print(data.summary())
     return 0
+
+
+def _modes(device: str) -> str:
+    """The modal table of a device in calm water (its own hydrodynamic database), or why there is none."""
+    from .sim import Scene, SceneError, compile_scene
+    from .sim._modes import format_modal_table, modal_table
+
+    calm = {"kind": "calm", "period": None, "duration": 10.0, "ramp": 0.0}
+    try:
+        scene = Scene.from_dict(
+            {"device": {"name": device}, "sea": calm, "solver": {"dt": 0.01}, "radiation": {"method": "none"}}
+        )
+        return format_modal_table(modal_table(compile_scene(scene)))
+    except (SceneError, ValueError, FileNotFoundError) as err:
+        return f"modal table: not available ({err})"
 
 
 def _is_result(path: Path) -> bool:

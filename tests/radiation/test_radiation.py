@@ -200,3 +200,22 @@ def test_shipped_fits_are_found_when_the_user_cache_is_empty(tmp_path, monkeypat
     model, report = hit
     assert model.n_states == int(report.attrs["n_states"]) and model.is_stable(0.0)
     assert not list(tmp_path.glob("**/*.nc"))
+
+
+def test_balanced_truncation_error_is_within_its_bound() -> None:
+    from wecss.radiation import balanced_truncation
+
+    a, b, c = known_system()
+    model = RadiationStateSpace(a, b, c, ("p__Heave", "q__Heave"))
+    omega = np.linspace(0.0, 60.0, 6001)
+    full = model.frequency_response(omega)
+    for order in (2, 4):
+        reduction = balanced_truncation(model, order=order)
+        assert reduction.model.n_states == order
+        error = np.linalg.norm(full - reduction.model.frequency_response(omega), ord=2, axis=(1, 2)).max()
+        assert 0 < error <= reduction.error_bound
+    exact = balanced_truncation(model, tol=1e-9)
+    assert exact.model.n_states == 6 and exact.error_bound == 0.0
+    np.testing.assert_allclose(exact.model.frequency_response(omega), full, atol=1e-9 * np.abs(full).max())
+    with pytest.raises(ValueError, match="exactly one of order"):
+        balanced_truncation(model)

@@ -124,3 +124,35 @@ def test_linear_model_round_trips_through_netcdf(tmp_path):
     assert again.system.state_labels == model.system.state_labels
     assert again.system.input_labels == model.system.input_labels
     np.testing.assert_array_equal(again.radiation.C, model.radiation.C)
+
+
+def test_modal_table_periods_are_roots_of_the_undamped_impedance():
+    """At every finite natural period, K - omega^2 (M* + Bw'(A(omega) - A_inf) Bw) is singular."""
+    from wecss.sim import Scene
+    from wecss.sim._modes import modal_table
+    from wecss.sim._radiation import interpolate_matrices
+
+    calm = {"kind": "calm", "period": None, "duration": 10.0, "ramp": 0.0}
+    sc = Scene.from_dict(
+        {"device": {"name": "m4-134"}, "sea": calm, "solver": {"dt": 0.01}, "radiation": {"method": "none"}}
+    )
+    compiled = compile_scene(sc)
+    table = modal_table(compiled)
+    lin = linearize(compiled, radiation=_empty_radiation(compiled))
+    ds, bw = compiled.hydro.dataset, lin.hydro_jacobian
+    finite = np.isfinite(table.period.values)
+    assert finite.sum() == 6 and np.isinf(table.period.values[0])  # the free surge
+    for period in table.period.values[finite]:
+        omega = 2 * np.pi / period
+        added = interpolate_matrices(compiled.hydro.omega, ds.added_mass.values, np.array([omega]))[0]
+        mass = lin.mass + bw.T @ (added - ds.added_mass_inf.values) @ bw
+        singular = np.linalg.svd(lin.stiffness - omega**2 * mass, compute_uv=False)
+        assert singular[-1] <= 1e-8 * singular[0]
+    assert np.all((table.damping_ratio.values[finite] > 0) & (table.damping_ratio.values[finite] < 1))
+
+
+def _empty_radiation(compiled):
+    from wecss.radiation import RadiationStateSpace
+
+    n = len(compiled.hydro.dofs)
+    return RadiationStateSpace(np.zeros((0, 0)), np.zeros((0, n)), np.zeros((n, 0)), tuple(compiled.hydro.dofs))

@@ -10,6 +10,8 @@ from ._irf import ImpulseResponse as ImpulseResponse
 from ._irf import filon_cosine_weights as filon_cosine_weights
 from ._irf import impulse_response as impulse_response
 from ._plot import plot_fit as plot_fit
+from ._reduce import Reduction as Reduction
+from ._reduce import balanced_truncation as balanced_truncation
 from ._statespace import STABILITY_DAMPING as STABILITY_DAMPING
 from ._statespace import RadiationStateSpace as RadiationStateSpace
 from ._statespace import Repair as Repair
