@@ -242,15 +242,18 @@ def _recursion(phi: np.ndarray, forcing: np.ndarray, x0: np.ndarray, keep: int) 
 
 
 def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *, hold: str = "foh") -> xr.Dataset:
-    """Open-loop time-domain run of the linear model on the scene's waves, with the exact discretisation.
+    """Time-domain run of the linear model on the scene's waves, with the exact discretisation.
 
-    Returns a Dataset laid out as :func:`wecss.sim.simulate`'s (so every metric works on both). The scene's
-    controller must have linear gains (they are folded into the model).
+    A controller with linear gains is folded into the model (open loop in the remaining inputs). Any other
+    controller closes the loop: it is called once per step with the PTO strokes and rates and its force is held
+    over the step (zero-order hold, as in the nonlinear simulator); the excitation keeps the ``hold`` given.
+
+    Returns a Dataset laid out as :func:`wecss.sim.simulate`'s (so every metric works on both).
 
     Raises
     ------
     ValueError
-        For a controller without linear gains, or a device with a free base (its coordinates are not linear).
+        For a device with a free base (its coordinates are not linear).
     """
     import time as _time
 
@@ -258,8 +261,6 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     from ._jit import JIT
     from ._simulate import Record
 
-    if not compiled.linear_controller:
-        raise ValueError("the linear simulation folds in a controller's linear gains; this controller has none")
     if compiled.device.model.nq != compiled.device.model.nv:
         raise ValueError("the linear simulation needs joint coordinates (no free base)")
     model = model or linearize(compiled)
@@ -274,19 +275,30 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     )
     u = np.concatenate([exc, np.zeros((time.size, n_pto))], axis=1)
     phi, g0, g1 = model.discretise(compiled.dt, hold)
-    forcing = np.ascontiguousarray(u[:-1] @ g0.T + u[1:] @ g1.T)
-    x = _recursion(np.ascontiguousarray(phi), forcing, np.zeros(phi.shape[0]), phi.shape[0])
+    forcing = np.ascontiguousarray(u[:-1, :n_h] @ g0[:, :n_h].T + u[1:, :n_h] @ g1[:, :n_h].T)
+    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(nv))
+    stroke0 = pto_strokes(p, compiled.q0, rot, pos, b)[0] - p.pto_rest
+    if compiled.linear_controller or n_pto == 0:
+        x = _recursion(np.ascontiguousarray(phi), forcing, np.zeros(phi.shape[0]), phi.shape[0])
+    else:
+        from controllers import Measurement
+
+        held = model.discretise(compiled.dt, "zoh")[1][:, n_h:]  # the PTO force is held over each step
+        x = np.zeros((time.size, phi.shape[0]))
+        for k in range(time.size - 1):
+            measurement = Measurement(stroke0 + model.pto_jacobian @ x[k, :nv], model.pto_jacobian @ x[k, nv : 2 * nv])
+            command = np.asarray(compiled.controller.compute(time[k], measurement), dtype=float)
+            u[k, n_h:] = command
+            x[k + 1] = phi @ x[k] + forcing[k] + held @ command
     run_time = _time.perf_counter() - start
     a_full = np.asarray(model.system.A)
     b_full = np.asarray(model.system.B)
     xi, rate = x[:, :nv], x[:, nv : 2 * nv]
     acc = (x @ a_full[nv : 2 * nv].T) + u @ b_full[nv : 2 * nv].T
     rad = -(x[:, 2 * nv :] @ model.radiation.C.T)
-    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(nv))
-    stroke0, _ = pto_strokes(p, compiled.q0, rot, pos, b)
-    stroke = (stroke0 - p.pto_rest)[None] + xi @ model.pto_jacobian.T
+    stroke = stroke0[None] + xi @ model.pto_jacobian.T
     stroke_rate = rate @ model.pto_jacobian.T
-    force = -(p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
+    force = u[:, n_h:] - (p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
     every = compiled.scene.outputs.every
     keep = slice(None, None, every)
     n = compiled.n_steps
