@@ -49,6 +49,10 @@ def balanced_truncation(model: RadiationStateSpace, *, order: int | None = None,
     """
     if (order is None) == (tol is None):
         raise ValueError("give exactly one of order (number of states) or tol (error bound)")
+    if tol is not None and not tol >= 0:
+        raise ValueError(f"tol is an error bound, >= 0; got {tol!r}")
+    if model.n_states == 0:
+        return Reduction(model, np.zeros(0), 0.0)
     if model.n_states and np.max(model.poles().real) >= 0:
         raise ValueError("balanced truncation needs a stable model (all poles in the left half-plane)")
     a, b, c = model.A, model.B, model.C

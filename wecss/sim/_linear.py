@@ -284,12 +284,16 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
         from controllers import Measurement
 
         held = model.discretise(compiled.dt, "zoh")[1][:, n_h:]  # the PTO force is held over each step
+        compiled.controller.setup(n_pto, compiled.dt)  # a fresh start for controllers with memory
         x = np.zeros((time.size, phi.shape[0]))
-        for k in range(time.size - 1):
+        for k in range(time.size):
             measurement = Measurement(stroke0 + model.pto_jacobian @ x[k, :nv], model.pto_jacobian @ x[k, nv : 2 * nv])
             command = np.asarray(compiled.controller.compute(time[k], measurement), dtype=float)
+            if command.shape != (n_pto,) or not np.all(np.isfinite(command)):
+                raise ValueError(f"controller returned {command!r}; expected {n_pto} finite forces")
             u[k, n_h:] = command
-            x[k + 1] = phi @ x[k] + forcing[k] + held @ command
+            if k + 1 < time.size:
+                x[k + 1] = phi @ x[k] + forcing[k] + held @ command
     run_time = _time.perf_counter() - start
     a_full = np.asarray(model.system.A)
     b_full = np.asarray(model.system.B)

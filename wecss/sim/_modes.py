@@ -1,4 +1,5 @@
-"""Modal table of a device about its static equilibrium: damped natural periods, damping ratios and mode shapes.
+"""Modal table of a device about its static equilibrium: natural periods (undamped, with the frequency-dependent
+added mass), damping ratios and mode shapes.
 
 For each mode, the frequency-dependent added mass is resolved by a fixed point: omega_j^2 = k_j / m_j(omega_j),
 with k_j and m_j(omega) = phi' (M* + Bw' (A(omega) - A_inf) Bw) phi the modal stiffness and mass of the
@@ -21,7 +22,14 @@ from ._radiation import interpolate_matrices
 def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
     """Natural periods [s], damping ratios [-] and mode shapes (largest entry 1) of every mode.
 
-    Modes without stiffness (a free surge) get an infinite period and no damping ratio (NaN).
+    Modes without stiffness (a free surge) get an infinite period and no damping ratio (NaN). ``converged`` says
+    whether each mode's fixed point converged within ``iterations``. The scene's controller must have linear
+    gains (its damping and stiffness are included).
+
+    Raises
+    ------
+    ValueError
+        If the controller has no linear gains.
     """
     lin = linearise(compiled)
     hydro = compiled.hydro
@@ -46,12 +54,14 @@ def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
     periods = np.full(nv, np.inf)
     ratios = np.full(nv, np.nan)
     shapes = np.zeros((nv, nv))
+    converged = np.ones(nv, dtype=bool)
     for j in range(nv):
         phi = vectors[:, j]
         if values[j] <= tiny:
             shapes[j] = phi / phi[np.argmax(np.abs(phi))]
             continue
         omega = float(np.sqrt(values[j]))
+        converged[j] = False
         for _ in range(iterations):
             w = float(np.clip(omega, data_omega[0], data_omega[-1]))
             vals, vecs = eigh(lin.stiffness, mass(w))
@@ -60,6 +70,7 @@ def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
             new = float(np.sqrt(max(vals[k], 0.0)))
             if abs(new - omega) <= 1e-10 * omega:
                 omega = new
+                converged[j] = True
                 break
             omega = new
         w = float(np.clip(omega, data_omega[0], data_omega[-1]))
@@ -71,7 +82,12 @@ def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
     names = list(compiled.device.model.velocity_names)
     return xr.Dataset(
         {
-            "period": (("mode",), periods[order], {"long_name": "damped natural period", "units": "s"}),
+            "period": (
+                ("mode",),
+                periods[order],
+                {"long_name": "natural period (undamped, with the added mass at its own frequency)", "units": "s"},
+            ),
+            "converged": (("mode",), converged[order], {"long_name": "fixed point converged"}),
             "damping_ratio": (("mode",), ratios[order], {"long_name": "modal damping ratio", "units": "1"}),
             "shape": (("mode", "dof"), shapes[order], {"long_name": "mode shape, largest entry 1", "units": "1"}),
         },

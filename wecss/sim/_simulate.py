@@ -155,6 +155,8 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
     evaluations = np.zeros(3, dtype=np.int64)
     rk4 = scene.solver.method == "rk4"
     chunk = CHUNK_STEPS if compiled.linear_controller else 1
+    if not compiled.linear_controller:
+        compiled.controller.setup(n_pto, h)  # a fresh start for controllers with memory
     bar = _Progress(n, progress)
     start = _time.perf_counter()
     done = 0
