@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tests.sim.scenes import scene
+from tests.sim.scenes import held, scene
 from wecss.results import (
     capture_width_ratio,
     mean_power,
@@ -148,28 +148,13 @@ def test_irregular_rao_and_spectral_moments(run):
 
 def test_held_controller_force_approaches_the_continuous_damper():
     """A controller without linear gains is sampled once per step (zero-order hold): first order in dt."""
-    from controllers import LinearDamping
-
-    class Sampled:
-        needs_state = False
-
-        def __init__(self) -> None:
-            self.inner = LinearDamping(6.0)
-
-        def setup(self, n_pto: int, dt: float) -> None:
-            self.inner.setup(n_pto, dt)
-
-        def compute(self, t, measurement):
-            return self.inner.compute(t, measurement)
-
     sc = scene(sea={"duration": 8.0, "ramp": 2.0})
     compiled = compile_scene(sc)
-    plant = compiled.plant._replace(pto_damping=np.zeros_like(compiled.plant.pto_damping))
-    held = simulate(dataclasses.replace(compiled, plant=plant, controller=Sampled(), linear_controller=False))
+    sampled = simulate(held(compiled))
     continuous = simulate(compiled)
-    a, b = held.pto_angle.values, continuous.pto_angle.values
+    a, b = sampled.pto_angle.values, continuous.pto_angle.values
     assert np.sqrt(np.mean((a - b) ** 2)) <= 0.05 * np.sqrt(np.mean(b**2))
-    assert "zero-order hold" in held.attrs["notes"]
+    assert "zero-order hold" in sampled.attrs["notes"]
 
 
 @pytest.mark.skipif(not JIT, reason="numba is not installed: there is only the pure path")

@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from controllers import LinearDamping
 from wecss.radiation import RadiationStateSpace
 from wecss.sim import CompiledScene, Scene, compile_scene
 from wecss.sim._radiation import from_state_space
@@ -51,3 +52,24 @@ def compiled_with_state_space(sc: Scene) -> CompiledScene:
     """Compile ``sc`` without memory, then give it :func:`simple_state_space` (and keep the scene's solver)."""
     none = dataclasses.replace(sc, radiation=dataclasses.replace(sc.radiation, method="none"))
     return with_state_space(compile_scene(none))
+
+
+class HeldDamping:
+    """Linear damping without ``linear_gains``: the simulators call it once per step and hold its force."""
+
+    needs_state = False
+
+    def __init__(self, damping: float = 6.0) -> None:
+        self.inner = LinearDamping(damping)
+
+    def setup(self, n_pto: int, dt: float) -> None:
+        self.inner.setup(n_pto, dt)
+
+    def compute(self, t: float, measurement: Any) -> np.ndarray:
+        return self.inner.compute(t, measurement)
+
+
+def held(compiled: CompiledScene) -> CompiledScene:
+    """``compiled`` with its linear damping replaced by :class:`HeldDamping` (6 N m s/rad)."""
+    plant = compiled.plant._replace(pto_damping=np.zeros_like(compiled.plant.pto_damping))
+    return dataclasses.replace(compiled, plant=plant, controller=HeldDamping(), linear_controller=False)

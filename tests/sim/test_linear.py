@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.sim.scenes import scene
+from tests.sim.scenes import held, scene
 from wecss.results import mean_power
 from wecss.sim import compile_scene, linearize, simulate_linear
 from wecss.sim._frequency import steady_state
@@ -170,30 +170,16 @@ def test_closed_loop_linear_run_matches_the_nonlinear_run_in_small_waves():
     exact hold of the linear model and Beeman's blend of the held values differ by O(dt)."""
     import dataclasses
 
-    from controllers import LinearDamping
     from wecss.sim import simulate
-
-    class Sampled:
-        needs_state = False
-
-        def __init__(self) -> None:
-            self.inner = LinearDamping(6.0)
-
-        def setup(self, n_pto: int, dt: float) -> None:
-            self.inner.setup(n_pto, dt)
-
-        def compute(self, t, measurement):
-            return self.inner.compute(t, measurement)
 
     differences = []
     for dt in (0.006, 0.003):
         compiled = _compiled(duration=30.0)
         sc = compiled.scene
         compiled = compile_scene(dataclasses.replace(sc, solver=dataclasses.replace(sc.solver, dt=dt)))
-        plant = compiled.plant._replace(pto_damping=np.zeros_like(compiled.plant.pto_damping))
-        held = dataclasses.replace(compiled, plant=plant, controller=Sampled(), linear_controller=False)
-        linear = simulate_linear(held)
-        nonlinear = simulate(held)
+        closed = held(compiled)
+        linear = simulate_linear(closed)
+        nonlinear = simulate(closed)
         a, b = linear.pto_angle.values, nonlinear.pto_angle.values
         differences.append(float(np.max(_rms(a - b) / _rms(b))))
         # the torque is the controller's, computed from the rate at the start of each step

@@ -124,15 +124,22 @@ class RadiationStateSpace:
         h = self.frequency_response(omega)
         return np.linalg.eigvalsh(0.5 * (h + np.conj(np.swapaxes(h, 1, 2))))[:, 0]
 
+    def half_modal(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """One complex mode per conjugate pair (upper half-plane) and per real pole: (poles, C V, V^-1 B, pair),
+        ``pair`` True for the pairs. The kernel is sum over these modes of Re or 2 Re of C V e^{pole t} V^-1 B."""
+        lam, left, right = self.modal()
+        tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)
+        keep = lam.imag >= -tol
+        return lam[keep], left[:, keep], right[keep], (lam.imag > tol)[keep]
+
     def real_modal(self) -> RadiationStateSpace:
         """The same kernel in real modal form: A block-diagonal with [[s, -w], [w, s]] per conjugate pair s +- i w
         (and s per real pole), so that A is sparse and the model is small to store."""
-        lam, left, right = self.modal()
+        lam, left, right, pair = self.half_modal()
         blocks, b_rows, c_cols = [], [], []
-        tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)
-        for k in np.flatnonzero(lam.imag >= -tol):
-            if lam[k].imag > tol[k]:
-                # z = l' x / complex pair: x_re, x_im with z = x_re + i x_im; K = 2 Re(left z)
+        for k in range(lam.size):
+            if pair[k]:
+                # z = x_re + i x_im per pair; K = 2 Re(left z)
                 s, w = lam[k].real, lam[k].imag
                 blocks.append(np.array([[s, -w], [w, s]]))
                 b_rows += [right[k].real, right[k].imag]

@@ -46,6 +46,15 @@ class LinearisedMFM:
     pto_jacobian: np.ndarray
 
 
+def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """At the static equilibrium: B (6n, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
+    transmissions G (n_pto, nv) and the PTO strokes from their rest positions (n_pto,)."""
+    p = compiled.plant
+    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(p.twists.shape[0]))
+    stroke, g = pto_strokes(p, compiled.q0, rot, pos, b)
+    return b, world_jacobian(rot, b)[p.hydro_index], g, stroke - p.pto_rest
+
+
 def linearise(compiled: CompiledScene) -> LinearisedMFM:
     """The linearised MFM matrices about the scene's static equilibrium (linear controllers only).
 
@@ -57,15 +66,11 @@ def linearise(compiled: CompiledScene) -> LinearisedMFM:
     if not compiled.linear_controller:
         raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
     p = compiled.plant
-    q0 = compiled.q0
-    nv = p.twists.shape[0]
-    rot, pos, b, _, _ = kinematics(p, q0, np.zeros(nv))
-    bw = world_jacobian(rot, b)[p.hydro_index]
-    _, g = pto_strokes(p, q0, rot, pos, b)
+    b, bw, g, _ = equilibrium_maps(compiled)
     # the database's own A_inf: A(omega) - A_inf is added below (the simulator's A_inf correction is not wanted here)
     total = body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf
     mass = b.T @ total @ b
-    stiffness = compiled.statics.stiffness(q0)  # device springs and the controller's stiffness included
+    stiffness = compiled.statics.stiffness(compiled.q0)  # device springs and the controller's stiffness included
     damping = g.T @ np.diag(p.pto_damping) @ g
     return LinearisedMFM(0.5 * (mass + mass.T), damping, stiffness, bw, g)
 

@@ -18,6 +18,8 @@ status: 0 ok, 1 non-finite state, 2 a bounded coordinate beyond its bound, 3 cor
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ._jit import kernel, reduction_kernel
@@ -26,6 +28,28 @@ from ._plant import Plant
 from ._radiation import RadiationArrays
 
 OK, NOT_FINITE, OUT_OF_BOUNDS, CORRECTOR_FAILED = 0, 1, 2, 3
+
+
+class Store(NamedTuple):
+    """Where the integrators record a run: every ``every``-th step (0: none) into the saved rows from
+    ``save_index[0]`` on, running sums over the steps from ``stats_start`` on into ``stats`` (absorbed power,
+    stroke^2, count, stroke per PTO), and [corrector evaluations, largest per step, Newton steps] into
+    ``evaluations``."""
+
+    every: int
+    stats_start: int
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    x: np.ndarray
+    xd: np.ndarray
+    f: np.ndarray
+    rad: np.ndarray
+    exc: np.ndarray
+    save_index: np.ndarray
+    stats: np.ndarray
+    evaluations: np.ndarray
+
 
 ACCELERATION_FLOOR: float = 1e-11
 """Absolute floor [m/s^2 or rad/s^2] of the corrector's convergence test: changes of the accelerations below it are
@@ -94,9 +118,8 @@ def memory_advance(
 
 @kernel
 def _record(
+    out: Store,
     n1: int,
-    save_every: int,
-    stats_start: int,
     spring: np.ndarray,
     q: np.ndarray,
     v: np.ndarray,
@@ -106,33 +129,23 @@ def _record(
     f: np.ndarray,
     rad: np.ndarray,
     exc: np.ndarray,
-    out_q: np.ndarray,
-    out_v: np.ndarray,
-    out_a: np.ndarray,
-    out_x: np.ndarray,
-    out_xd: np.ndarray,
-    out_f: np.ndarray,
-    out_rad: np.ndarray,
-    out_exc: np.ndarray,
-    save_index: np.ndarray,
-    stats: np.ndarray,
 ) -> None:
-    if save_every > 0 and n1 % save_every == 0 and save_index[0] < out_q.shape[0]:
-        j = save_index[0]
-        out_q[j] = q
-        out_v[j] = v
-        out_a[j] = a
-        out_x[j] = x
-        out_xd[j] = xd
-        out_f[j] = f
-        out_rad[j] = rad
-        out_exc[j] = exc
-        save_index[0] = j + 1
-    if n1 >= stats_start:
-        stats[0] += -(f + spring * x) * xd  # absorbed power: the device spring's force is conservative, left out
-        stats[1] += x * x
-        stats[2] += 1.0
-        stats[3] += x
+    if out.every > 0 and n1 % out.every == 0 and out.save_index[0] < out.q.shape[0]:
+        j = out.save_index[0]
+        out.q[j] = q
+        out.v[j] = v
+        out.a[j] = a
+        out.x[j] = x
+        out.xd[j] = xd
+        out.f[j] = f
+        out.rad[j] = rad
+        out.exc[j] = exc
+        out.save_index[0] = j + 1
+    if n1 >= out.stats_start:
+        out.stats[0] += -(f + spring * x) * xd  # absorbed power: the device spring's force is conservative, left out
+        out.stats[1] += x * x
+        out.stats[2] += 1.0
+        out.stats[3] += x
 
 
 @kernel
@@ -164,25 +177,13 @@ def beeman_chunk(
     buf: np.ndarray,
     pos: np.ndarray,
     pto_now: np.ndarray,
-    save_every: int,
-    stats_start: int,
-    out_q: np.ndarray,
-    out_v: np.ndarray,
-    out_a: np.ndarray,
-    out_x: np.ndarray,
-    out_xd: np.ndarray,
-    out_f: np.ndarray,
-    out_rad: np.ndarray,
-    out_exc: np.ndarray,
-    save_index: np.ndarray,
-    stats: np.ndarray,
-    iterations: np.ndarray,
+    out: Store,
 ) -> tuple[int, int]:
     """Advance ``excitation.shape[0] - 1`` Beeman steps from global step ``step0`` (state arrays updated in place).
 
     ``excitation`` holds the excitation on the hydro DOFs at the chunk's times t_step0 ... (rows).
-    ``pto_now`` (3, n_pto) receives x, x_dot, f at the last state (for controllers). ``iterations`` accumulates
-    [corrector evaluations, largest per step, Newton steps]. Returns (status, global step of the failure).
+    ``pto_now`` (3, n_pto) receives x, x_dot, f at the last state (for controllers); ``out`` records the run.
+    Returns (status, global step of the failure).
     """
     nv = v.shape[0]
     n_steps = excitation.shape[0] - 1
@@ -232,7 +233,7 @@ def beeman_chunk(
                     a_p = accelerations(p, qp, vp, base, r.newest, command)[0]
                     jac[:, c] -= 0.5 * h * (a_p - a_v) / eps
                 count += nv + 1
-                iterations[2] += 1
+                out.evaluations[2] += 1
                 delta = np.linalg.solve(jac, -residual)
                 vc = vc + delta
                 if not np.all(np.isfinite(vc)):
@@ -251,8 +252,8 @@ def beeman_chunk(
             count += 1
         if not np.all(np.isfinite(vc)):
             return NOT_FINITE, n1
-        iterations[0] += count
-        iterations[1] = max(iterations[1], count)
+        out.evaluations[0] += count
+        out.evaluations[1] = max(out.evaluations[1], count)
         rad = hist + r.newest @ u1
         memory_advance(r, z, u_now, u1, buf, pos)
         u_now[:] = u1
@@ -263,15 +264,13 @@ def beeman_chunk(
         pto_now[0] = x1
         pto_now[1] = xd1
         pto_now[2] = f1
-        _record(
-            n1, save_every, stats_start, p.pto_spring, q, v, acc, x1, xd1, f1, rad, excitation[k + 1],
-            out_q, out_v, out_a, out_x, out_xd, out_f, out_rad, out_exc, save_index, stats,
-        )  # fmt: skip
+        _record(out, n1, p.pto_spring, q, v, acc, x1, xd1, f1, rad, excitation[k + 1])
     return OK, step0 + n_steps
 
 
 @kernel
-def _rk4_rates(p: Plant, r: RadiationArrays, q: np.ndarray, v: np.ndarray, z: np.ndarray, exc: np.ndarray, command):
+def state_rates(p: Plant, r: RadiationArrays, q: np.ndarray, v: np.ndarray, z: np.ndarray, exc: np.ndarray, command):
+    """Rates (q_dot, v_dot, z_dot) of the state-space system, with the PTO data and the memory force."""
     rad = -np.real(r.output @ z)
     n_h = exc.shape[0]
     a, u, x, xd, f, _mass = accelerations(p, q, v, exc + rad, np.zeros((n_h, n_h)), command)
@@ -295,19 +294,7 @@ def rk4_chunk(
     acc: np.ndarray,
     z: np.ndarray,
     pto_now: np.ndarray,
-    save_every: int,
-    stats_start: int,
-    out_q: np.ndarray,
-    out_v: np.ndarray,
-    out_a: np.ndarray,
-    out_x: np.ndarray,
-    out_xd: np.ndarray,
-    out_f: np.ndarray,
-    out_rad: np.ndarray,
-    out_exc: np.ndarray,
-    save_index: np.ndarray,
-    stats: np.ndarray,
-    iterations: np.ndarray,
+    out: Store,
 ) -> tuple[int, int]:
     """Advance ``(excitation.shape[0] - 1) // 2`` RK4 steps; ``excitation`` rows are at half steps from t_step0."""
     n_steps = (excitation.shape[0] - 1) // 2
@@ -316,10 +303,14 @@ def rk4_chunk(
         e0 = excitation[2 * k]
         em = excitation[2 * k + 1]
         e1 = excitation[2 * k + 2]
-        qd1, a1, zd1, _, _, _, _ = _rk4_rates(p, r, q, v, z, e0, command)
-        qd2, a2, zd2, _, _, _, _ = _rk4_rates(p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command)
-        qd3, a3, zd3, _, _, _, _ = _rk4_rates(p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command)
-        qd4, a4, zd4, _, _, _, _ = _rk4_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command)
+        qd1, a1, zd1, _, _, _, _ = state_rates(p, r, q, v, z, e0, command)
+        qd2, a2, zd2, _, _, _, _ = state_rates(
+            p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command
+        )
+        qd3, a3, zd3, _, _, _, _ = state_rates(
+            p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command
+        )
+        qd4, a4, zd4, _, _, _, _ = state_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command)
         q1 = q + h / 6.0 * (qd1 + 2.0 * qd2 + 2.0 * qd3 + qd4)
         normalise_quaternions(p, q1)
         v1 = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
@@ -330,15 +321,12 @@ def rk4_chunk(
         q[:] = q1
         v[:] = v1
         z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
-        _, a_new, _, x1, xd1, f1, rad = _rk4_rates(p, r, q, v, z, e1, command)
-        iterations[0] += 5
-        iterations[1] = 5
+        _, a_new, _, x1, xd1, f1, rad = state_rates(p, r, q, v, z, e1, command)
+        out.evaluations[0] += 5
+        out.evaluations[1] = 5
         acc[:] = a_new
         pto_now[0] = x1
         pto_now[1] = xd1
         pto_now[2] = f1
-        _record(
-            n1, save_every, stats_start, p.pto_spring, q, v, acc, x1, xd1, f1, rad, e1,
-            out_q, out_v, out_a, out_x, out_xd, out_f, out_rad, out_exc, save_index, stats,
-        )  # fmt: skip
+        _record(out, n1, p.pto_spring, q, v, acc, x1, xd1, f1, rad, e1)
     return OK, step0 + n_steps

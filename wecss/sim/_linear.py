@@ -24,8 +24,8 @@ from scipy.linalg import expm
 
 from ..radiation import RadiationStateSpace
 from ._compile import CompiledScene, fit_request
+from ._frequency import equilibrium_maps
 from ._jit import kernel
-from ._kernels import kinematics, pto_strokes, world_jacobian
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,9 +180,7 @@ def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = N
     p = compiled.plant
     q0 = compiled.q0
     nv = p.twists.shape[0]
-    rot, pos, b, _, _ = kinematics(p, q0, np.zeros(nv))
-    bw = world_jacobian(rot, b)[p.hydro_index]
-    _, g = pto_strokes(p, q0, rot, pos, b)
+    b, bw, g, _ = equilibrium_maps(compiled)
     mass = b.T @ p.total_mass @ b
     mass = 0.5 * (mass + mass.T)
     stiffness = compiled.statics.stiffness(q0)
@@ -276,8 +274,7 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     u = np.concatenate([exc, np.zeros((time.size, n_pto))], axis=1)
     phi, g0, g1 = model.discretise(compiled.dt, hold)
     forcing = np.ascontiguousarray(u[:-1, :n_h] @ g0[:, :n_h].T + u[1:, :n_h] @ g1[:, :n_h].T)
-    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(nv))
-    stroke0 = pto_strokes(p, compiled.q0, rot, pos, b)[0] - p.pto_rest
+    stroke0 = equilibrium_maps(compiled)[3]
     if compiled.linear_controller or n_pto == 0:
         x = _recursion(np.ascontiguousarray(phi), forcing, np.zeros(phi.shape[0]), phi.shape[0])
     else:

@@ -133,14 +133,8 @@ def _phi(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
     """Complex modal, first-order-hold discretisation of ``model`` for the step ``dt`` [s]."""
     n_h = len(model.dofs)
-    lam, left, right = model.modal()
-    tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)
-    keep = lam.imag >= -tol  # one of each conjugate pair, and the real poles
-    pair = lam.imag > tol
-    lam = lam[keep]
-    factor = np.where(pair[keep], 2.0, 1.0)
-    output = left[:, keep] * factor[None, :]
-    inp = right[keep]
+    lam, left, inp, pair = model.half_modal()  # one of each conjugate pair, and the real poles
+    output = left * np.where(pair, 2.0, 1.0)[None, :]
     phi1, phi2 = _phi(lam * dt)
     hold1 = (dt * phi2)[:, None] * inp
     hold0 = (dt * (phi1 - phi2))[:, None] * inp

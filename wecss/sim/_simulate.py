@@ -17,9 +17,9 @@ import xarray as xr
 from scipy.integrate import solve_ivp
 
 from ._compile import CompiledScene, compile_scene
-from ._integrators import CORRECTOR_FAILED, NOT_FINITE, OK, OUT_OF_BOUNDS, beeman_chunk, rk4_chunk
+from ._integrators import CORRECTOR_FAILED, NOT_FINITE, OK, OUT_OF_BOUNDS, Store, beeman_chunk, rk4_chunk, state_rates
 from ._jit import JIT
-from ._kernels import accelerations, configuration_rate
+from ._kernels import accelerations
 from ._scene import Scene, SceneError
 
 CHUNK_STEPS: int = 2000
@@ -123,16 +123,21 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
     every = scene.outputs.every if not scene.outputs.statistics_only else 0
     n_save = n // every + 1 if every else 0
     nq, nv, n_pto, n_h = compiled.q0.size, p.twists.shape[0], p.pto_kind.size, p.hydro_index.size
-    out = {
-        "q": np.zeros((n_save, nq)),
-        "v": np.zeros((n_save, nv)),
-        "a": np.zeros((n_save, nv)),
-        "x": np.zeros((n_save, n_pto)),
-        "xd": np.zeros((n_save, n_pto)),
-        "f": np.zeros((n_save, n_pto)),
-        "rad": np.zeros((n_save, n_h)),
-        "exc": np.zeros((n_save, n_h)),
-    }
+    out = Store(
+        every=every,
+        stats_start=n - max(1, round(scene.outputs.window * n)) + 1,
+        q=np.zeros((n_save, nq)),
+        v=np.zeros((n_save, nv)),
+        a=np.zeros((n_save, nv)),
+        x=np.zeros((n_save, n_pto)),
+        xd=np.zeros((n_save, n_pto)),
+        f=np.zeros((n_save, n_pto)),
+        rad=np.zeros((n_save, n_h)),
+        exc=np.zeros((n_save, n_h)),
+        save_index=np.zeros(1, dtype=np.int64),
+        stats=np.zeros((4, n_pto)),  # sums over the window: absorbed power, stroke^2, count, stroke
+        evaluations=np.zeros(3, dtype=np.int64),
+    )
     q = compiled.q0.copy()
     v = np.zeros(nv)
     command = np.zeros(n_pto)
@@ -145,14 +150,18 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
     buf[:, 0] = buf[:, r.depth] = u0
     pos = np.zeros(1, dtype=np.int64)
     pto_now = np.stack([x0, xd0, f0])
-    save_index = np.zeros(1, dtype=np.int64)
     if n_save:
-        for key, value in (("q", q), ("v", v), ("a", a0), ("x", x0), ("xd", xd0), ("f", f0), ("exc", exc0)):
-            out[key][0] = value
-        save_index[0] = 1
-    stats = np.zeros((4, n_pto))  # sums over the window: absorbed power, stroke^2, count, stroke
-    stats_start = n - max(1, round(scene.outputs.window * n)) + 1
-    evaluations = np.zeros(3, dtype=np.int64)
+        for row, value in (
+            (out.q, q),
+            (out.v, v),
+            (out.a, a0),
+            (out.x, x0),
+            (out.xd, xd0),
+            (out.f, f0),
+            (out.exc, exc0),
+        ):
+            row[0] = value
+        out.save_index[0] = 1
     rk4 = scene.solver.method == "rk4"
     chunk = CHUNK_STEPS if compiled.linear_controller else 1
     if not compiled.linear_controller:
@@ -173,18 +182,14 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
             times = (done + 0.5 * np.arange(2 * m + 1)) * h
             status, at = rk4_chunk(
                 p, r, _excitation(compiled, times), command, h, done, compiled.bounded, scene.solver.angle_bound,
-                q, v, acc, z, pto_now, every, stats_start,
-                out["q"], out["v"], out["a"], out["x"], out["xd"], out["f"], out["rad"], out["exc"], save_index, stats,
-                evaluations,
+                q, v, acc, z, pto_now, out,
             )  # fmt: skip
         else:
             times = (done + np.arange(m + 1)) * h
             status, at = beeman_chunk(
                 p, r, _excitation(compiled, times), command, h, done, scene.solver.corrector_tol,
                 scene.solver.max_corrector_iterations, compiled.bounded, scene.solver.angle_bound,
-                q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, every, stats_start,
-                out["q"], out["v"], out["a"], out["x"], out["xd"], out["f"], out["rad"], out["exc"], save_index, stats,
-                evaluations,
+                q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, out,
             )  # fmt: skip
         if status != OK:
             raise _diverged(status, at, compiled, q, v)
@@ -201,7 +206,9 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
         bar.update(done)
     run_time = _time.perf_counter() - start
     saved = np.arange(n_save) * every * h
-    return Record(saved, **out, stats=stats, evaluations=evaluations, run_time=run_time)
+    return Record(
+        saved, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc, out.stats, out.evaluations, run_time
+    )
 
 
 def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
@@ -210,22 +217,19 @@ def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
         raise SceneError("the reference solver needs a controller with linear gains (such as 'damping')")
     scene = compiled.scene
     p, r = compiled.plant, compiled.radiation
-    nq, nv, nz, n_h = compiled.q0.size, p.twists.shape[0], r.poles.size, p.hydro_index.size
+    nq, nv, nz = compiled.q0.size, p.twists.shape[0], r.poles.size
     command = np.zeros(p.pto_kind.size)
-    zero = np.zeros((n_h, n_h))
 
     def parts(t: float, y: np.ndarray):
+        """The RK4 kernel's rates at (t, y): qd, a, zd, x, xd, f, rad; and the excitation."""
         q, v = y[:nq], y[nq : nq + nv]
         z = y[nq + nv : nq + nv + nz] + 1j * y[nq + nv + nz :]
-        rad = -np.real(r.output @ z)
         exc = _excitation(compiled, np.array([t]))[0]
-        a, u, x, xd, f, _ = accelerations(p, q, v, exc + rad, zero, command)
-        return q, v, z, a, u, x, xd, f, rad, exc
+        return (*state_rates(p, r, q, v, z, exc, command), exc)
 
     def rates(t: float, y: np.ndarray) -> np.ndarray:
-        q, v, z, a, u, *_ = parts(t, y)
-        zd = r.poles * z + r.input @ u
-        return np.concatenate([configuration_rate(p, q, v), a, zd.real, zd.imag])
+        qd, a, zd, *_ = parts(t, y)
+        return np.concatenate([qd, a, zd.real, zd.imag])
 
     every = scene.outputs.every
     saved = np.arange(compiled.n_steps // every + 1) * every * compiled.dt
@@ -240,8 +244,9 @@ def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
     rows = [parts(t, y) for t, y in zip(sol.t, sol.y.T, strict=True)]
     stack = {
         k: np.array([row[i] for row in rows])
-        for k, i in (("q", 0), ("v", 1), ("a", 3), ("x", 5), ("xd", 6), ("f", 7), ("rad", 8), ("exc", 9))
+        for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7))
     }
+    stack["q"], stack["v"] = sol.y[:nq].T.copy(), sol.y[nq : nq + nv].T.copy()
     window = saved > saved[-1] * (1 - scene.outputs.window)
     power = -(stack["f"] + p.pto_spring * stack["x"]) * stack["xd"]
     x = stack["x"][window]
