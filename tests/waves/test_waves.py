@@ -157,3 +157,29 @@ def test_tabulated_spectrum() -> None:
     assert s.density(np.array([0.5, 3.0])).tolist() == [0.5, 0.0]
     with pytest.raises(ValueError, match="strictly increasing"):
         TabulatedSpectrum(np.array([0.0, 2.0, 1.0]), np.ones(3))
+
+
+@pytest.mark.parametrize(
+    ("omega", "t0", "n_times", "fft"),
+    [
+        (np.delete(np.arange(3, 90), [7, 40]) * 2 * np.pi / 12.0, 0.35, 1201, True),  # periodic, 1200 steps per period
+        (np.array([2 * np.pi / 1.2]), 0.0, 50, True),  # a regular wave sampled at T / 200 (period 200 steps)
+        (np.arange(3, 90) * 2 * np.pi / 12.0 + 1e-4, 0.35, 1201, False),  # off the grid: the recurrence
+    ],
+)
+def test_evaluate_equals_the_sum_of_exponentials(omega, t0, n_times, fft) -> None:
+    """The FFT path (periodic components on a uniform grid) and the phasor recurrence both give the direct sum of
+    complex exponentials, beyond one period of the record as well."""
+    from wecss.waves._elevation import _fft_period, evaluate
+
+    rng = np.random.default_rng(3)
+    coefficients = rng.normal(size=(3, omega.size)) + 1j * rng.normal(size=(3, omega.size))
+    dt = 0.006
+    time = t0 + dt * np.arange(n_times)
+    assert (_fft_period(omega, dt, n_times) is not None) == fft
+    exact = coefficients @ np.exp(1j * np.outer(omega, time))
+    assert np.max(np.abs(evaluate(coefficients, omega, time) - exact)) <= 1e-12 * np.max(np.abs(exact))
+    if fft:  # past the period (the record repeats)
+        later = time + dt * 2 * n_times
+        exact = coefficients @ np.exp(1j * np.outer(omega, later))
+        assert np.max(np.abs(evaluate(coefficients, omega, later) - exact)) <= 1e-12 * np.max(np.abs(exact))

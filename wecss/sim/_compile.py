@@ -8,6 +8,8 @@ frequencies) is written into ``notes`` and ends up in the result's attributes.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -59,6 +61,8 @@ class CompiledScene:
         Gravity, hydrostatics and the PTO springs (device springs plus the controller's linear stiffness).
     q0 : ndarray
         Static equilibrium, the initial configuration.
+    stiffness : ndarray (nv, nv)
+        Static stiffness K* at q0 with its geometric part and the controller's linear stiffness [SI].
     dt : float
         Step [s].
     n_steps : int
@@ -81,6 +85,7 @@ class CompiledScene:
     linear_controller: bool
     statics: StaticModel
     q0: np.ndarray
+    stiffness: np.ndarray
     dt: float
     n_steps: int
     bounded: np.ndarray
@@ -95,6 +100,32 @@ class CompiledScene:
     def time(self) -> np.ndarray:
         """Times of every step [s]."""
         return np.arange(self.n_steps + 1) * self.dt
+
+    @property
+    def fingerprint(self) -> str:
+        """SHA-256 (32 hex digits) of everything a model of this scene depends on: the scene without its outputs,
+        the device spec, the hydrodynamic data, the wave components and the wecss version. Two compilations
+        with one fingerprint give the same linear model."""
+        cached = self.__dict__.get("_fingerprint")
+        if cached is None:
+            from .. import __version__
+
+            h = hashlib.sha256()
+            scene = self.scene.to_dict()
+            scene.pop("outputs")
+            h.update(json.dumps(scene, sort_keys=True, default=str).encode())
+            h.update(json.dumps(self.device.spec, sort_keys=True, default=str).encode())
+            ds = self.hydro.dataset
+            for name in sorted(str(v) for v in ds.data_vars):
+                h.update(name.encode())
+                h.update(np.ascontiguousarray(ds[name].values).tobytes())
+            if self.waves is not None:
+                h.update(self.waves.omega.tobytes())
+                h.update(self.waves.amplitude.tobytes())
+            h.update(__version__.encode())
+            cached = h.hexdigest()[:32]
+            object.__setattr__(self, "_fingerprint", cached)
+        return cached
 
 
 def _device(scene: Scene) -> Device:
@@ -301,6 +332,7 @@ def compile_scene(scene: Scene) -> CompiledScene:
         linear_controller=linear,
         statics=statics,
         q0=q0,
+        stiffness=statics.stiffness(q0),
         dt=dt,
         n_steps=scene.n_steps,
         bounded=np.asarray(bounded, dtype=np.int64),

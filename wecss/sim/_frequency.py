@@ -70,7 +70,7 @@ def linearise(compiled: CompiledScene) -> LinearisedMFM:
     # the database's own A_inf: A(omega) - A_inf is added below (the simulator's A_inf correction is not wanted here)
     total = body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf
     mass = b.T @ total @ b
-    stiffness = compiled.statics.stiffness(compiled.q0)  # device springs and the controller's stiffness included
+    stiffness = compiled.stiffness  # device springs and the controller's stiffness included
     damping = g.T @ np.diag(p.pto_damping) @ g
     return LinearisedMFM(0.5 * (mass + mass.T), damping, stiffness, bw, g)
 

@@ -15,6 +15,7 @@ velocities and vanish at equilibrium.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import control
@@ -25,7 +26,7 @@ from scipy.linalg import expm
 from ..radiation import RadiationStateSpace
 from ._compile import CompiledScene, fit_request
 from ._frequency import equilibrium_maps
-from ._jit import kernel
+from ._modal_recursion import ModalForm, ModalSteps, outputs, real_part_rows, run
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,6 +60,34 @@ class LinearModel:
     def n_states(self) -> int:
         """Number of states (2 nv + radiation states)."""
         return int(self.system.nstates)
+
+    @property
+    def force_input(self) -> np.ndarray:
+        """Input matrix (n_states, nv) of generalised forces: every input acts through it (the excitation as
+        Bw' F_exc, the PTO forces as G' f_pto)."""
+        nv = self.mass.shape[0]
+        out = np.zeros((self.n_states, nv))
+        out[nv : 2 * nv] = np.linalg.inv(self.mass)
+        return out
+
+    @property
+    def modal_form(self) -> ModalForm:
+        """The state matrix in modal coordinates (computed once; see ``wecss.sim._modal_recursion``)."""
+        cached = self.__dict__.get("_modal_form")
+        if cached is None:
+            cached = ModalForm.of(np.asarray(self.system.A))
+            object.__setattr__(self, "_modal_form", cached)
+        return cached
+
+    def modal_steps(self, dt: float, hold: str = "foh") -> ModalSteps:
+        """The exact step of ``dt`` [s] in modal coordinates for generalised-force inputs (cached per dt and
+        hold)."""
+        if not dt > 0:
+            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        cache = self.__dict__.setdefault("_modal_steps", {})
+        if (float(dt), hold) not in cache:
+            cache[float(dt), hold] = self.modal_form.steps(self.force_input, dt, hold)
+        return cache[float(dt), hold]
 
     def to_dataset(self) -> xr.Dataset:
         """The matrices with their labels, for netCDF export (``wecss.results.save``); :meth:`from_dataset`
@@ -125,12 +154,19 @@ class LinearModel:
         """Exact discretisation x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1} over the step ``dt`` [s].
 
         ``hold``: "foh" (inputs linear in time over a step: second order for smooth forcing; exact for such inputs)
-        or "zoh" (inputs held: G1 = 0, first order).
+        or "zoh" (inputs held: G1 = 0, first order). Computed once per step and hold (matrix exponential of
+        the augmented system); :meth:`modal_steps` is the same step in modal coordinates, which the runs use.
         """
         if hold not in ("foh", "zoh"):
             raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
         if not dt > 0:
             raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        cache = self.__dict__.setdefault("_discretised", {})
+        if (float(dt), hold) not in cache:
+            cache[float(dt), hold] = self._discretise(dt, hold)
+        return cache[float(dt), hold]
+
+    def _discretise(self, dt: float, hold: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         a, b = np.asarray(self.system.A), np.asarray(self.system.B)
         n, m = b.shape
         block = np.zeros((n + 2 * m, n + 2 * m))
@@ -151,8 +187,21 @@ def _radiation_model(compiled: CompiledScene) -> RadiationStateSpace:
     return fit_radiation(compiled.hydro, settings, cache=True, band=band).model.real_modal()
 
 
-def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = None) -> LinearModel:
+CACHE_SIZE: int = 32
+"""Linear models kept in memory by :func:`linearize`, by scene fingerprint (least recently used dropped)."""
+
+_CACHE: OrderedDict[str, LinearModel] = OrderedDict()
+
+
+def linearize(
+    compiled: CompiledScene, radiation: RadiationStateSpace | None = None, *, cache: bool = True
+) -> LinearModel:
     """The linearised MFM model of a compiled scene about its static equilibrium.
+
+    Models of the scene's own radiation fit are cached in memory by the scene's fingerprint
+    (:attr:`CompiledScene.fingerprint`: scene without outputs, device, data, waves), with their modal form and
+    discretisations, so a second call on the same scene (recompiled or not) costs nothing. The fit itself is
+    cached on disk by ``wecss.radiation``. The cached model is shared: do not modify its arrays.
 
     Parameters
     ----------
@@ -161,7 +210,10 @@ def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = N
         here). Its controller's linear gains are folded into the model (other controllers act through the PTO
         inputs).
     radiation : RadiationStateSpace, optional
-        Radiation states (default: the scene's state-space fit, the one its simulation uses).
+        Radiation states (default: the scene's state-space fit, the one its simulation uses; models with other
+        radiation states are not cached).
+    cache : bool
+        Use and fill the in-memory cache.
 
     Returns
     -------
@@ -177,13 +229,26 @@ def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = N
             "compile the scene with radiation.method = 'state_space' to linearise it (its A_inf correction must "
             f"belong to the radiation states used); it has {compiled.radiation_summary.method!r}"
         )
+    key = compiled.fingerprint if cache and radiation is None else None
+    if key is not None and key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    model = _linearize(compiled, radiation)
+    if key is not None:
+        _CACHE[key] = model
+        while len(_CACHE) > CACHE_SIZE:
+            _CACHE.popitem(last=False)
+    return model
+
+
+def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -> LinearModel:
     p = compiled.plant
     q0 = compiled.q0
     nv = p.twists.shape[0]
     b, bw, g, _ = equilibrium_maps(compiled)
     mass = b.T @ p.total_mass @ b
     mass = 0.5 * (mass + mass.T)
-    stiffness = compiled.statics.stiffness(q0)
+    stiffness = compiled.stiffness
     damping = g.T @ np.diag(p.pto_damping) @ g
     rad = (radiation or _radiation_model(compiled)).real_modal()
     if tuple(rad.dofs) != tuple(compiled.hydro.dofs):
@@ -226,21 +291,9 @@ def linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None = N
     return LinearModel(system, mass, damping, stiffness, bw, g, rad, q0)
 
 
-@kernel
-def _recursion(phi: np.ndarray, forcing: np.ndarray, x0: np.ndarray, keep: int) -> np.ndarray:
-    """x_{k+1} = Phi x_k + forcing_k; returns the first ``keep`` states of every x_k (k = 0 ... n)."""
-    n_t = forcing.shape[0] + 1
-    out = np.empty((n_t, keep))
-    x = x0.copy()
-    out[0] = x[:keep]
-    for k in range(n_t - 1):
-        x = phi @ x + forcing[k]
-        out[k + 1] = x[:keep]
-    return out
-
-
 def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *, hold: str = "foh") -> xr.Dataset:
-    """Time-domain run of the linear model on the scene's waves, with the exact discretisation.
+    """Time-domain run of the linear model on the scene's waves, with the exact discretisation (in modal
+    coordinates: see ``wecss.sim._modal_recursion``).
 
     A controller with linear gains is folded into the model (open loop in the remaining inputs). Any other
     controller closes the loop: it is called once per step with the PTO strokes and rates and its force is held
@@ -251,7 +304,7 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     Raises
     ------
     ValueError
-        For a device with a free base (its coordinates are not linear).
+        For a device with a free base (its coordinates are not linear), or an unknown ``hold``.
     """
     import time as _time
 
@@ -261,59 +314,103 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
 
     if compiled.device.model.nq != compiled.device.model.nv:
         raise ValueError("the linear simulation needs joint coordinates (no free base)")
+    if hold not in ("foh", "zoh"):
+        raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
     model = model or linearize(compiled)
+    form, steps = model.modal_form, model.modal_steps(compiled.dt, hold)
     start = _time.perf_counter()
     p = compiled.plant
     nv, n_h, n_pto = model.mass.shape[0], model.hydro_jacobian.shape[0], model.pto_jacobian.shape[0]
+    g = model.pto_jacobian
     time = compiled.time
     exc = (
         np.ascontiguousarray(compiled.excitation.force(time).T)
         if compiled.excitation is not None
         else np.zeros((time.size, n_h))
     )
-    u = np.concatenate([exc, np.zeros((time.size, n_pto))], axis=1)
-    phi, g0, g1 = model.discretise(compiled.dt, hold)
-    forcing = np.ascontiguousarray(u[:-1, :n_h] @ g0[:, :n_h].T + u[1:, :n_h] @ g1[:, :n_h].T)
+    force = exc @ model.hydro_jacobian  # generalised excitation (n_t, nv)
     stroke0 = equilibrium_maps(compiled)[3]
+    command = np.zeros((time.size, n_pto))
+    # outputs: xi, xi_dot, the acceleration's state part and (if asked for) the radiation force
+    n_states = model.n_states
+    with_radiation = "radiation" in compiled.scene.outputs.variables
+    rows = np.zeros((3 * nv + (n_h if with_radiation else 0), n_states))
+    rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
+    rows[2 * nv : 3 * nv] = np.asarray(model.system.A)[nv : 2 * nv]
+    if with_radiation:
+        rows[3 * nv :, 2 * nv :] = -model.radiation.C
     if compiled.linear_controller or n_pto == 0:
-        x = _recursion(np.ascontiguousarray(phi), forcing, np.zeros(phi.shape[0]), phi.shape[0])
+        y = run(form, steps, force, rows)
     else:
-        from controllers import Measurement
-
-        held = model.discretise(compiled.dt, "zoh")[1][:, n_h:]  # the PTO force is held over each step
-        compiled.controller.setup(n_pto, compiled.dt)  # a fresh start for controllers with memory
-        x = np.zeros((time.size, phi.shape[0]))
-        for k in range(time.size):
-            measurement = Measurement(stroke0 + model.pto_jacobian @ x[k, :nv], model.pto_jacobian @ x[k, nv : 2 * nv])
-            command = np.asarray(compiled.controller.compute(time[k], measurement), dtype=float)
-            if command.shape != (n_pto,) or not np.all(np.isfinite(command)):
-                raise ValueError(f"controller returned {command!r}; expected {n_pto} finite forces")
-            u[k, n_h:] = command
-            if k + 1 < time.size:
-                x[k + 1] = phi @ x[k] + forcing[k] + held @ command
-    run_time = _time.perf_counter() - start
-    a_full = np.asarray(model.system.A)
-    b_full = np.asarray(model.system.B)
-    xi, rate = x[:, :nv], x[:, nv : 2 * nv]
-    acc = (x @ a_full[nv : 2 * nv].T) + u @ b_full[nv : 2 * nv].T
-    rad = -(x[:, 2 * nv :] @ model.radiation.C.T)
-    stroke = stroke0[None] + xi @ model.pto_jacobian.T
-    stroke_rate = rate @ model.pto_jacobian.T
-    force = u[:, n_h:] - (p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
+        z, free = _closed_loop(compiled, model, form, steps, force, stroke0, command)
+        force += command @ g
+        y = outputs(form, rows, z, free)
     every = compiled.scene.outputs.every
     keep = slice(None, None, every)
+    acc = y[keep, 2 * nv : 3 * nv] + force[keep] @ model.force_input[nv : 2 * nv].T
+    rad = y[keep, 3 * nv :] if with_radiation else np.zeros((acc.shape[0], n_h))
+    xi, rate = y[:, :nv], y[:, nv : 2 * nv]
+    stroke = stroke0[None] + xi @ g.T
+    stroke_rate = rate @ g.T
+    pto_force = command - (p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
     n = compiled.n_steps
     window = np.arange(time.size) >= n - max(1, round(compiled.scene.outputs.window * n)) + 1
-    power = -(force + p.pto_spring * stroke) * stroke_rate
+    power = -(pto_force + p.pto_spring * stroke) * stroke_rate
     xs = stroke[window]
     stats = np.stack([power[window].sum(0), (xs**2).sum(0), np.full(n_pto, float(window.sum())), xs.sum(0)])
+    run_time = _time.perf_counter() - start
     record = Record(
-        time[keep], (compiled.q0[None] + xi)[keep], rate[keep], acc[keep], stroke[keep], stroke_rate[keep],
-        force[keep], rad[keep], exc[keep], stats, np.zeros(3, dtype=np.int64), run_time,
+        time[keep], (compiled.q0[None] + xi)[keep], rate[keep], acc, stroke[keep], stroke_rate[keep],
+        pto_force[keep], rad, exc[keep], stats, np.zeros(3, dtype=np.int64), run_time,
     )  # fmt: skip
     ds = build_result(compiled, record, jit=JIT)
     for key in ("evaluations_per_step", "max_evaluations_per_step", "newton_corrector_steps"):
         ds.attrs.pop(key, None)
-    ds.attrs["solver"] = f"linear ({hold}, exact discretisation)"
+    ds.attrs["solver"] = f"linear ({hold}, exact discretisation in {form.n_modes} modal coordinates)"
     ds.attrs["radiation"] = f"state space, {model.radiation.n_states} real states (linear model)"
     return ds
+
+
+def _closed_loop(
+    compiled: CompiledScene,
+    model: LinearModel,
+    form: ModalForm,
+    steps: ModalSteps,
+    force: np.ndarray,
+    stroke0: np.ndarray,
+    command: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The modal run with the controller called once per step, its force held over the step (written into
+    ``command``)."""
+    from controllers import Measurement
+
+    nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
+    g, time = model.pto_jacobian, compiled.time
+    held = model.modal_steps(compiled.dt, "zoh")  # the PTO force is held over each step
+    held_modes = held.input0 @ g.T  # (n_modes, n_pto)
+    held_free = held.free_input0 @ g.T
+    # strokes and rates from the modal coordinates and the free states
+    rows = np.zeros((2 * n_pto, model.n_states))
+    rows[:n_pto, :nv] = g
+    rows[n_pto:, nv : 2 * nv] = g
+    measure_modes = real_part_rows((rows[:, form.rest] @ form.shapes).T)
+    measure_free = rows[:, form.free]
+    forcing = force[:-1] @ steps.input0.T + force[1:] @ steps.input1.T
+    free_forcing = force[:-1] @ steps.free_input0.T + force[1:] @ steps.free_input1.T
+    free_modes = real_part_rows(steps.free_state.T)
+    z = np.zeros((time.size, form.n_modes), dtype=complex)
+    free = np.zeros((time.size, form.free.size))
+    compiled.controller.setup(n_pto, compiled.dt)  # a fresh start for controllers with memory
+    for k in range(time.size):
+        measured = z[k].view(np.float64) @ measure_modes + measure_free @ free[k]
+        out = np.asarray(
+            compiled.controller.compute(time[k], Measurement(stroke0 + measured[:n_pto], measured[n_pto:])),
+            dtype=float,
+        )
+        if out.shape != (n_pto,) or not np.all(np.isfinite(out)):
+            raise ValueError(f"controller returned {out!r}; expected {n_pto} finite forces")
+        command[k] = out
+        if k + 1 < time.size:
+            z[k + 1] = steps.decay * z[k] + forcing[k] + held_modes @ out
+            free[k + 1] = free[k] + z[k].view(np.float64) @ free_modes + free_forcing[k] + held_free @ out
+    return z, free

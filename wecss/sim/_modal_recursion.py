@@ -1,0 +1,225 @@
+"""Exact discrete-time runs of a linear system x' = A x + B u in its modal coordinates.
+
+A dense recursion x_{k+1} = Phi x_k + ... costs n^2 per step (n = 414 states for m4-134 with its radiation
+states); in modal coordinates it costs n. The states split in two:
+
+- free states: those no state depends on (A[:, free] = 0, such as a free surge displacement). They are pure
+  integrators, x_free' = A[free, rest] x_rest + B[free] u, which would make A defective (a Jordan block with the
+  velocity mode at zero); they are integrated over each step exactly instead;
+- the rest, A[rest, rest] = V diag(poles) V^-1, diagonalisable (checked through the condition number of V).
+  One mode of each conjugate pair is kept: x_rest = Re(shapes z), with the factor 2 of the pairs in ``shapes``.
+
+With phi_j(s) = sum_k s^k / (k + j)! (phi_1 = (e^s - 1)/s, ...) and s = pole h, over a step h with inputs linear
+in time (first-order hold; zero-order hold keeps u_k):
+
+    z_{k+1} = e^s z_k + h [(phi_1 - phi_2) u_k + phi_2 u_{k+1}] b                    (FOH)
+    int_step z = h phi_1 z_k + h^2 [(phi_2 - phi_3) u_k + phi_3 u_{k+1}] b
+
+with b = V^-1 B[rest] per mode; the free states gain A[free, rest] Re(shapes int_step z) + B[free] int_step u.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._jit import kernel
+
+CONDITION_LIMIT: float = 1e8
+"""Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""
+
+
+class NotDiagonalisable(ValueError):
+    """The state matrix (without its free states) has no well-conditioned eigenvector basis."""
+
+
+def _phis(s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """phi_1, phi_2 and phi_3 of s: closed forms, or for |s| < 0.1 (where they cancel) the series to s^11."""
+    small = np.abs(s) < 0.1
+    ss = np.where(small, 1.0, s)
+    e = np.expm1(ss)
+    closed = (e / ss, (e - ss) / ss**2, (e - ss - ss**2 / 2) / ss**3)
+    out = []
+    for j, value in zip((1, 2, 3), closed, strict=True):
+        series = sum(s**k / math.factorial(k + j) for k in range(12))
+        out.append(np.where(small, series, value))
+    return out[0], out[1], out[2]
+
+
+@dataclass(frozen=True)
+class ModalForm:
+    """A state matrix split into free states and modes (see the module docstring).
+
+    Attributes
+    ----------
+    n_states : int
+    free, rest : ndarray of int
+        Indices of the free states and of the others.
+    poles : complex ndarray (n_modes,)
+        One pole per conjugate pair (upper half-plane) and the real poles [1/s].
+    shapes : complex ndarray (n_rest, n_modes)
+        x_rest = Re(shapes z).
+    inverse : complex ndarray (n_modes, n_rest)
+        Rows of V^-1 of the kept modes: z = inverse x_rest.
+    coupling : ndarray (n_free, n_rest)
+        A[free, rest].
+    condition : float
+        Condition number of V.
+    """
+
+    n_states: int
+    free: np.ndarray
+    rest: np.ndarray
+    poles: np.ndarray
+    shapes: np.ndarray
+    inverse: np.ndarray
+    coupling: np.ndarray
+    condition: float
+
+    @classmethod
+    def of(cls, a: np.ndarray) -> ModalForm:
+        """The modal form of the real state matrix ``a``.
+
+        Raises
+        ------
+        NotDiagonalisable
+            If the eigenvectors of A[rest, rest] are ill-conditioned (condition number above CONDITION_LIMIT).
+        """
+        a = np.asarray(a, dtype=float)
+        n = a.shape[0]
+        free = np.flatnonzero(~np.any(a != 0.0, axis=0))
+        rest = np.setdiff1d(np.arange(n), free)
+        lam, vec = np.linalg.eig(a[np.ix_(rest, rest)])
+        condition = float(np.linalg.cond(vec)) if rest.size else 1.0
+        if not condition <= CONDITION_LIMIT:
+            raise NotDiagonalisable(
+                f"the state matrix's eigenvectors have condition number {condition:.3g} (limit "
+                f"{CONDITION_LIMIT:.0e}): repeated poles without a free state to split off"
+            )
+        inverse = np.linalg.inv(vec) if rest.size else vec
+        tol = 1e-9 * np.maximum(np.abs(lam), 1e-300)
+        keep = lam.imag >= -tol
+        pair = (lam.imag > tol)[keep]
+        if int(keep.sum() + pair.sum()) != rest.size:
+            raise NotDiagonalisable("the complex poles do not come in conjugate pairs (is A real?)")
+        shapes = vec[:, keep] * np.where(pair, 2.0, 1.0)[None, :]
+        return cls(n, free, rest, lam[keep], shapes, inverse[keep], a[np.ix_(free, rest)], condition)
+
+    @property
+    def n_modes(self) -> int:
+        """Number of kept modes."""
+        return int(self.poles.size)
+
+    def steps(self, b: np.ndarray, dt: float, hold: str) -> ModalSteps:
+        """The exact step of ``dt`` [s] for the input matrix ``b`` (n_states, m) under ``hold`` ("foh" or "zoh")."""
+        if hold not in ("foh", "zoh"):
+            raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
+        b = np.asarray(b, dtype=float)
+        modal_b = self.inverse @ b[self.rest]  # (n_modes, m)
+        phi1, phi2, phi3 = _phis(self.poles * dt)
+        if hold == "foh":
+            w0, w1 = dt * (phi1 - phi2), dt * phi2
+            i0, i1 = dt**2 * (phi2 - phi3), dt**2 * phi3
+            u0, u1 = dt / 2, dt / 2
+        else:
+            w0, w1 = dt * phi1, np.zeros_like(phi1)
+            i0, i1 = dt**2 * phi2, np.zeros_like(phi2)
+            u0, u1 = dt, 0.0
+        projected = self.coupling @ self.shapes  # (n_free, n_modes): A[free, rest] Re(shapes .)
+        b_free = b[self.free]
+        return ModalSteps(
+            decay=np.exp(self.poles * dt),
+            input0=w0[:, None] * modal_b,
+            input1=w1[:, None] * modal_b,
+            free_state=projected * (dt * phi1)[None, :],
+            free_input0=np.real(projected @ (i0[:, None] * modal_b)) + u0 * b_free,
+            free_input1=np.real(projected @ (i1[:, None] * modal_b)) + u1 * b_free,
+        )
+
+
+@dataclass(frozen=True)
+class ModalSteps:
+    """One exact step in modal coordinates: z_{k+1} = decay z_k + input0 u_k + input1 u_{k+1}, and the free states'
+    increment Re(free_state z_k) + free_input0 u_k + free_input1 u_{k+1}."""
+
+    decay: np.ndarray
+    input0: np.ndarray
+    input1: np.ndarray
+    free_state: np.ndarray
+    free_input0: np.ndarray
+    free_input1: np.ndarray
+
+
+def complex_columns(matrix: np.ndarray) -> np.ndarray:
+    """The real matrix R with u @ R viewed as complex equal to u @ matrix, for real u: real and imaginary parts
+    interleaved by column (one real matrix product instead of a complex one)."""
+    out = np.empty((matrix.shape[0], 2 * matrix.shape[1]))
+    out[:, 0::2] = matrix.real
+    out[:, 1::2] = matrix.imag
+    return out
+
+
+def real_part_rows(matrix: np.ndarray) -> np.ndarray:
+    """The real matrix R with z.view(float) @ R = Re(z @ matrix) for complex z (rows interleaved)."""
+    out = np.empty((2 * matrix.shape[0], matrix.shape[1]))
+    out[0::2] = matrix.real
+    out[1::2] = -matrix.imag
+    return out
+
+
+@kernel
+def modal_recursion(decay: np.ndarray, forcing: np.ndarray, z0: np.ndarray) -> np.ndarray:
+    """z_{k+1} = decay z_k + forcing_k for k = 0 ... n - 1; returns z_0 ... z_n (n + 1, n_modes)."""
+    n = forcing.shape[0]
+    out = np.empty((n + 1, z0.size), dtype=np.complex128)
+    z = z0.copy()
+    out[0] = z
+    for k in range(n):
+        for j in range(z.size):
+            z[j] = decay[j] * z[j] + forcing[k, j]
+        out[k + 1] = z
+    return out
+
+
+BLOCK_STEPS: int = 512
+"""Steps per block of :func:`run`: the block's modal coordinates stay in cache instead of filling memory."""
+
+
+def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np.ndarray | None = None) -> np.ndarray:
+    """Outputs y = C x (n_t, n_out) at every step for the inputs u (n_t, m) [one row per step], from the state x0
+    (default zero), in blocks of BLOCK_STEPS steps."""
+    u = np.ascontiguousarray(u, dtype=float)
+    x0 = np.zeros(form.n_states) if x0 is None else np.asarray(x0, dtype=float)
+    c = np.asarray(c, dtype=float)
+    input0, input1 = complex_columns(steps.input0.T), complex_columns(steps.input1.T)
+    free_modes = real_part_rows(steps.free_state.T)
+    out_modes, out_free = real_part_rows((c[:, form.rest] @ form.shapes).T), c[:, form.free].T
+    y = np.empty((u.shape[0], c.shape[0]))
+    z = (form.inverse @ x0[form.rest]).astype(complex)
+    free = x0[form.free].copy()
+    for k0 in range(0, u.shape[0], BLOCK_STEPS):
+        k1 = min(u.shape[0], k0 + BLOCK_STEPS)  # block of steps k0 ... k1 - 1, started from z_k0
+        forcing = (u[k0 : k1 - 1] @ input0 + u[k0 + 1 : k1] @ input1).view(np.complex128)
+        block = modal_recursion(steps.decay, forcing, z).view(np.float64)
+        increments = (
+            block[:-1] @ free_modes + u[k0 : k1 - 1] @ steps.free_input0.T + u[k0 + 1 : k1] @ steps.free_input1.T
+        )
+        frees = np.empty((k1 - k0, free.size))
+        frees[0] = free
+        np.cumsum(increments, axis=0, out=frees[1:])
+        frees[1:] += free
+        y[k0:k1] = block @ out_modes + frees @ out_free
+        if k1 < u.shape[0]:  # the step from k1 - 1 to k1 starts the next block
+            last = block[-1].view(np.complex128)
+            z = steps.decay * last + (u[k1 - 1] @ input0 + u[k1] @ input1).view(np.complex128)
+            free = frees[-1] + last.view(np.float64) @ free_modes + u[k1 - 1] @ steps.free_input0.T
+            free = free + u[k1] @ steps.free_input1.T
+    return y
+
+
+def outputs(form: ModalForm, c: np.ndarray, z: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """y = C x (n_t, n_out) from modal coordinates z (n_t, n_modes) and free states (n_t, n_free)."""
+    c = np.asarray(c, dtype=float)
+    return z.view(np.float64) @ real_part_rows((c[:, form.rest] @ form.shapes).T) + free @ c[:, form.free].T
