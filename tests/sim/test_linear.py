@@ -182,9 +182,12 @@ def test_closed_loop_linear_run_matches_the_nonlinear_run_in_small_waves():
         nonlinear = simulate(closed)
         a, b = linear.pto_angle.values, nonlinear.pto_angle.values
         differences.append(float(np.max(_rms(a - b) / _rms(b))))
-        # the torque is the controller's, computed from the rate at the start of each step
-        rate = linear.pto_angular_velocity.values
-        np.testing.assert_allclose(linear.pto_torque.values, -6.0 * rate, rtol=1e-12, atol=1e-15)
+        # the torque recorded at t_k is the one that acted over the step ending there, as in the nonlinear run:
+        # the controller's from the rate at the step's start
+        for run in (linear, nonlinear):
+            rate, torque = run.pto_angular_velocity.values, run.pto_torque.values
+            np.testing.assert_allclose(torque[1:], -6.0 * rate[:-1], rtol=1e-12, atol=1e-15)
+            assert np.all(torque[0] == 0.0)
     assert differences[0] <= 0.02, differences
     assert 1.6 <= differences[0] / differences[1] <= 2.5, differences
 
@@ -210,3 +213,24 @@ def test_free_surge_has_an_exactly_zero_stiffness_column():
     compiled = _compiled("m4-134")
     assert np.all(compiled.stiffness[:, 0] == 0.0)
     assert np.all(np.asarray(linearize(compiled).system.A)[:, 0] == 0.0)
+
+
+def test_controller_is_called_at_its_control_rate_in_both_simulators():
+    """controller.dt = 4 steps: the force is the controller's at the start of each period and held over it, in the
+    linear and in the nonlinear run; a period that is not a whole number of steps is refused."""
+    import dataclasses
+
+    from wecss.sim import SceneError, simulate
+
+    compiled = _compiled(duration=12.0)
+    sc = compiled.scene
+    periodic = held(compile_scene(dataclasses.replace(sc, controller=dataclasses.replace(sc.controller, dt="Tp/50"))))
+    assert periodic.scene.control_steps == 4
+    for run in (simulate_linear(periodic), simulate(periodic)):
+        torque, rate = run.pto_torque.values, run.pto_angular_velocity.values
+        # recorded at t_k: the torque that acted over the step ending at t_k, set at the period's start
+        start = 4 * ((np.arange(1, torque.shape[0]) - 1) // 4)
+        np.testing.assert_allclose(torque[1:], -6.0 * rate[start], rtol=1e-12, atol=1e-15)
+        assert "every 4 steps" in run.attrs["notes"]
+    with pytest.raises(SceneError, match="whole number of solver steps"):
+        dataclasses.replace(sc, controller=dataclasses.replace(sc.controller, dt=0.01))

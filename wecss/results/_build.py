@@ -104,7 +104,12 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
 def _notes(compiled: CompiledScene) -> list[str]:
     notes = list(compiled.notes)
     if compiled.device.ptos and not compiled.linear_controller:
-        notes.append("controller force held constant over each step (zero-order hold at the simulation step)")
+        steps = compiled.scene.control_steps
+        notes.append(
+            "controller force held constant over each step (zero-order hold at the simulation step)"
+            if steps == 1
+            else f"controller called every {steps} steps ({steps * compiled.dt:.6g} s), its force held in between"
+        )
     return notes
 
 

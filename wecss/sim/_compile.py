@@ -208,7 +208,7 @@ def make_controller(scene: Scene, device: Device, dt: float) -> tuple[Any, bool]
         parameters = {"damping": [p.damping for p in device.ptos]}
     try:
         controller = create(choice.name, **parameters)
-        controller.setup(len(device.ptos), dt)
+        controller.setup(len(device.ptos), dt * scene.control_steps)
     except (TypeError, ValueError) as err:
         raise SceneError(f"controller {choice.name!r} with parameters {parameters}: {err}") from None
     return controller, callable(getattr(controller, "linear_gains", None))

@@ -296,8 +296,9 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     coordinates: see ``wecss.sim._modal_recursion``).
 
     A controller with linear gains is folded into the model (open loop in the remaining inputs). Any other
-    controller closes the loop: it is called once per step with the PTO strokes and rates and its force is held
-    over the step (zero-order hold, as in the nonlinear simulator); the excitation keeps the ``hold`` given.
+    controller closes the loop: it is called once per control period (``controller.dt``, default every step)
+    with the PTO strokes and rates and its force is held until the next call (zero-order hold, as in the
+    nonlinear simulator); the excitation keeps the ``hold`` given.
 
     Returns a Dataset laid out as :func:`wecss.sim.simulate`'s (so every metric works on both).
 
@@ -343,6 +344,8 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
         y = run(form, steps, force, rows)
     else:
         z, free = _closed_loop(compiled, model, form, steps, force, stroke0, command)
+        # recorded at t_k, as by the nonlinear simulator: the force that acted over the step ending at t_k
+        command = np.concatenate([np.zeros((1, n_pto)), command[:-1]])
         force += command @ g
         y = outputs(form, rows, z, free)
     every = compiled.scene.outputs.every
@@ -380,8 +383,8 @@ def _closed_loop(
     stroke0: np.ndarray,
     command: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The modal run with the controller called once per step, its force held over the step (written into
-    ``command``)."""
+    """The modal run with the controller called once per control period, its force held over the period (written
+    into ``command``)."""
     from controllers import Measurement
 
     nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
@@ -400,15 +403,18 @@ def _closed_loop(
     free_modes = real_part_rows(steps.free_state.T)
     z = np.zeros((time.size, form.n_modes), dtype=complex)
     free = np.zeros((time.size, form.free.size))
-    compiled.controller.setup(n_pto, compiled.dt)  # a fresh start for controllers with memory
+    control = compiled.scene.control_steps
+    compiled.controller.setup(n_pto, compiled.dt * control)  # a fresh start for controllers with memory
+    out = np.zeros(n_pto)
     for k in range(time.size):
-        measured = z[k].view(np.float64) @ measure_modes + measure_free @ free[k]
-        out = np.asarray(
-            compiled.controller.compute(time[k], Measurement(stroke0 + measured[:n_pto], measured[n_pto:])),
-            dtype=float,
-        )
-        if out.shape != (n_pto,) or not np.all(np.isfinite(out)):
-            raise ValueError(f"controller returned {out!r}; expected {n_pto} finite forces")
+        if k % control == 0:  # a control step: the controller's force is held until the next one
+            measured = z[k].view(np.float64) @ measure_modes + measure_free @ free[k]
+            out = np.asarray(
+                compiled.controller.compute(time[k], Measurement(stroke0 + measured[:n_pto], measured[n_pto:])),
+                dtype=float,
+            )
+            if out.shape != (n_pto,) or not np.all(np.isfinite(out)):
+                raise ValueError(f"controller returned {out!r}; expected {n_pto} finite forces")
         command[k] = out
         if k + 1 < time.size:
             z[k + 1] = steps.decay * z[k] + forcing[k] + held_modes @ out

@@ -211,10 +211,20 @@ class ControllerChoice:
     """A controller registered under the ``wecss.controllers`` entry points, with its parameters.
 
     Without parameters, ``damping`` takes the device's PTO damping (6 N m s/rad for the M4 devices).
+
+    Attributes
+    ----------
+    name : str
+    parameters : dict
+    dt : float or str or None
+        Control period [s] or relative ("Tp/20"): the controller is called every ``dt`` and its force held in
+        between. A whole number of solver steps; None (default) calls it every step. Controllers with linear
+        gains act continuously and ignore it.
     """
 
     name: str = "damping"
     parameters: dict[str, Any] = field(default_factory=dict)
+    dt: float | str | None = None
 
     def __post_init__(self) -> None:
         _types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
@@ -364,6 +374,7 @@ class Scene:
         dt = self.dt
         if dt >= self.sea.duration_s:
             raise SceneError(f"solver.dt ({dt:.4g} s) must be shorter than sea.duration ({self.sea.duration_s:.4g} s)")
+        self.control_steps  # noqa: B018 (validates controller.dt)
         if self.solver.method in ("rk4", "reference") and self.radiation.method == "convolution":
             raise SceneError(
                 f"solver.method {self.solver.method!r} needs radiation.method 'state_space' or 'none': with a "
@@ -380,6 +391,19 @@ class Scene:
     def n_steps(self) -> int:
         """Number of steps (duration / dt, rounded to the nearest integer)."""
         return max(1, round(self.sea.duration_s / self.dt))
+
+    @property
+    def control_steps(self) -> int:
+        """Solver steps per control period (1 without ``controller.dt``)."""
+        if self.controller.dt is None:
+            return 1
+        control = resolve_time(self.controller.dt, self.sea.period, "controller.dt")
+        steps = round(control / self.dt)
+        if steps < 1 or abs(control - steps * self.dt) > 1e-9 * control:
+            raise SceneError(
+                f"controller.dt ({control:.6g} s) must be a whole number of solver steps (solver.dt {self.dt:.6g} s)"
+            )
+        return steps
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], *, base: Path | None = None) -> Scene:

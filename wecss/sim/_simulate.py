@@ -163,9 +163,10 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
             row[0] = value
         out.save_index[0] = 1
     rk4 = scene.solver.method == "rk4"
-    chunk = CHUNK_STEPS if compiled.linear_controller else 1
+    # a controller without linear gains is called once per control period (chunk) and its force held over it
+    chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
     if not compiled.linear_controller:
-        compiled.controller.setup(n_pto, h)  # a fresh start for controllers with memory
+        compiled.controller.setup(n_pto, h * scene.control_steps)  # a fresh start for controllers with memory
     bar = _Progress(n, progress)
     start = _time.perf_counter()
     done = 0
