@@ -64,3 +64,23 @@ def test_modal_run_of_m4_134_equals_the_matrix_exponential_step(hold):
     # the radiation states too, through outputs() on the modal coordinates
     z = np.array([form.inverse @ xk[form.rest] for xk in x[:5]])
     np.testing.assert_allclose(outputs(form, np.eye(model.n_states), z, x[:5, form.free]), x[:5], atol=1e-12)
+
+
+@pytest.mark.parametrize("s", [1e-9, 0.003 - 0.02j, 0.0999, 0.1001, -0.7 + 3j, -25.0 + 0.5j])
+def test_phi_functions_equal_their_integrals(s):
+    """phi_j(s) = int_0^1 e^{(1 - t) s} t^(j - 1) / (j - 1)! dt, by quadrature, on both sides of the series switch."""
+    import math
+
+    from scipy.integrate import quad
+
+    from wecss.sim._phi import phi_functions
+
+    values = phi_functions(np.array([s]))
+    for j, value in zip((1, 2, 3), values, strict=True):
+
+        def part(t, f, j=j):
+            return f(np.exp((1 - t) * s) * t ** (j - 1) / math.factorial(j - 1))
+
+        exact = quad(part, 0, 1, args=(np.real,), epsabs=0, epsrel=1e-13)[0]
+        exact += 1j * quad(part, 0, 1, args=(np.imag,), epsabs=0, epsrel=1e-13)[0]
+        assert abs(value[0] - exact) <= 1e-12 * abs(exact)

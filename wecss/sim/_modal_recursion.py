@@ -9,7 +9,7 @@ states); in modal coordinates it costs n. The states split in two:
 - the rest, A[rest, rest] = V diag(poles) V^-1, diagonalisable (checked through the condition number of V).
   One mode of each conjugate pair is kept: x_rest = Re(shapes z), with the factor 2 of the pairs in ``shapes``.
 
-With phi_j(s) = sum_k s^k / (k + j)! (phi_1 = (e^s - 1)/s, ...) and s = pole h, over a step h with inputs linear
+With the phi-functions of ``wecss.sim._phi`` and s = pole h, over a step h with inputs linear
 in time (first-order hold; zero-order hold keeps u_k):
 
     z_{k+1} = e^s z_k + h [(phi_1 - phi_2) u_k + phi_2 u_{k+1}] b                    (FOH)
@@ -20,12 +20,12 @@ with b = V^-1 B[rest] per mode; the free states gain A[free, rest] Re(shapes int
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._jit import kernel
+from ._phi import phi_functions
 
 CONDITION_LIMIT: float = 1e8
 """Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""
@@ -33,19 +33,6 @@ CONDITION_LIMIT: float = 1e8
 
 class NotDiagonalisable(ValueError):
     """The state matrix (without its free states) has no well-conditioned eigenvector basis."""
-
-
-def _phis(s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """phi_1, phi_2 and phi_3 of s: closed forms, or for |s| < 0.1 (where they cancel) the series to s^11."""
-    small = np.abs(s) < 0.1
-    ss = np.where(small, 1.0, s)
-    e = np.expm1(ss)
-    closed = (e / ss, (e - ss) / ss**2, (e - ss - ss**2 / 2) / ss**3)
-    out = []
-    for j, value in zip((1, 2, 3), closed, strict=True):
-        series = sum(s**k / math.factorial(k + j) for k in range(12))
-        out.append(np.where(small, series, value))
-    return out[0], out[1], out[2]
 
 
 @dataclass(frozen=True)
@@ -118,7 +105,7 @@ class ModalForm:
             raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
         b = np.asarray(b, dtype=float)
         modal_b = self.inverse @ b[self.rest]  # (n_modes, m)
-        phi1, phi2, phi3 = _phis(self.poles * dt)
+        phi1, phi2, phi3 = phi_functions(self.poles * dt)
         if hold == "foh":
             w0, w1 = dt * (phi1 - phi2), dt * phi2
             i0, i1 = dt**2 * (phi2 - phi3), dt**2 * phi3

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..radiation import ImpulseResponse, RadiationStateSpace
 from ..radiation._convolution import MEMORY_FACTOR
+from ._phi import phi_functions
 
 FINE_MEMORY: float = 3.0
 """Convolution lags up to this time [s] use every simulation step (the kernel changes fast near t = 0)."""
@@ -121,21 +122,12 @@ def no_radiation(n_h: int) -> tuple[RadiationArrays, RadiationSummary]:
     return RadiationArrays(**_empty(n_h, 0, np.zeros((n_h, n_h)))), RadiationSummary("none")
 
 
-def _phi(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """phi1 = (e^z - 1)/z and phi2 = (e^z - 1 - z)/z^2, by series for small |z|."""
-    small = np.abs(z) < 1e-3
-    zs = np.where(small, 1.0, z)
-    phi1 = np.where(small, 1 + z / 2 + z**2 / 6 + z**3 / 24, np.expm1(zs) / zs)
-    phi2 = np.where(small, 0.5 + z / 6 + z**2 / 24 + z**3 / 120, (np.expm1(zs) - zs) / zs**2)
-    return phi1, phi2
-
-
 def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
     """Complex modal, first-order-hold discretisation of ``model`` for the step ``dt`` [s]."""
     n_h = len(model.dofs)
     lam, left, inp, pair = model.half_modal()  # one of each conjugate pair, and the real poles
     output = left * np.where(pair, 2.0, 1.0)[None, :]
-    phi1, phi2 = _phi(lam * dt)
+    phi1, phi2, _ = phi_functions(lam * dt)
     hold1 = (dt * phi2)[:, None] * inp
     hold0 = (dt * (phi1 - phi2))[:, None] * inp
     arrays = _empty(n_h, 1, -np.real(output @ hold1))
