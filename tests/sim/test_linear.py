@@ -205,6 +205,9 @@ def test_linear_models_are_cached_by_scene_fingerprint():
     assert other.fingerprint != compiled.fingerprint
     assert linearize(other) is not model
     assert linearize(compiled, cache=False) is not model
+    # a compiled scene changed after compilation (the damping moved out of the equations) is another model
+    changed = linearize(held(compiled))
+    assert changed is not model and np.all(changed.damping == 0.0) and np.any(model.damping != 0.0)
 
 
 def test_free_surge_has_an_exactly_zero_stiffness_column():

@@ -15,6 +15,7 @@ velocities and vanish at equilibrium.
 
 from __future__ import annotations
 
+import hashlib
 from collections import OrderedDict
 from dataclasses import dataclass
 
@@ -199,7 +200,8 @@ def linearize(
     """The linearised MFM model of a compiled scene about its static equilibrium.
 
     Models of the scene's own radiation fit are cached in memory by the scene's fingerprint
-    (:attr:`CompiledScene.fingerprint`: scene without outputs, device, data, waves), with their modal form and
+    (:attr:`CompiledScene.fingerprint`: scene without outputs, device, data, waves) and the compiled mass,
+    stiffness and PTO gains (which a changed copy of a compiled scene may not share), with their modal form and
     discretisations, so a second call on the same scene (recompiled or not) costs nothing. The fit itself is
     cached on disk by ``wecss.radiation``. The cached model is shared: do not modify its arrays.
 
@@ -229,7 +231,7 @@ def linearize(
             "compile the scene with radiation.method = 'state_space' to linearise it (its A_inf correction must "
             f"belong to the radiation states used); it has {compiled.radiation_summary.method!r}"
         )
-    key = compiled.fingerprint if cache and radiation is None else None
+    key = _cache_key(compiled) if cache and radiation is None else None
     if key is not None and key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]
@@ -239,6 +241,17 @@ def linearize(
         while len(_CACHE) > CACHE_SIZE:
             _CACHE.popitem(last=False)
     return model
+
+
+def _cache_key(compiled: CompiledScene) -> str:
+    """The scene's fingerprint and the arrays the model is built from (a compiled scene changed after compilation,
+    such as another controller or PTO damping, gets another key)."""
+    h = hashlib.sha256(compiled.fingerprint.encode())
+    p = compiled.plant
+    for array in (p.total_mass, p.pto_damping, p.pto_stiffness, compiled.stiffness, compiled.q0):
+        h.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    h.update(bytes([compiled.linear_controller]))
+    return h.hexdigest()[:32]
 
 
 def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -> LinearModel:
