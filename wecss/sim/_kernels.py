@@ -346,10 +346,7 @@ def accelerations(
     for k in range(m):
         rhs[k] -= gyro[act[k]]
     hi = p.hydro_index
-    bwv = bw @ v
-    u = np.zeros(hi.shape[0])
-    for k in range(hi.shape[0]):
-        u[k] = bwv[hi[k]]
+    u = hydro_rows(bw, v, hi)
     load = hydro_force + newest @ u
     force = hydrostatic_force(p, rot, pos)
     for k in range(hi.shape[0]):
@@ -369,11 +366,16 @@ def accelerations(
 def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Velocities of the hydro DOFs (world axes) [m/s, rad/s]."""
     rot, _pos, b, _bdot, _omega = kinematics(p, q, v)
-    bwv = world_jacobian(rot, b) @ v
-    hi = p.hydro_index
-    u = np.zeros(hi.shape[0])
-    for k in range(hi.shape[0]):
-        u[k] = bwv[hi[k]]
+    return hydro_rows(world_jacobian(rot, b), v, p.hydro_index)
+
+
+@kernel
+def hydro_rows(bw: np.ndarray, v: np.ndarray, hydro_index: np.ndarray) -> np.ndarray:
+    """The hydro DOFs' rows of Bw v: their velocities in world axes [m/s, rad/s]."""
+    bwv = bw @ v
+    u = np.zeros(hydro_index.shape[0])
+    for k in range(hydro_index.shape[0]):
+        u[k] = bwv[hydro_index[k]]
     return u
 
 

@@ -324,7 +324,7 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
 
     from ..results import build_result
     from ._jit import JIT
-    from ._simulate import Record
+    from ._simulate import Record, window_statistics
 
     if compiled.device.model.nq != compiled.device.model.nv:
         raise ValueError("the linear simulation needs joint coordinates (no free base)")
@@ -369,11 +369,7 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     stroke = stroke0[None] + xi @ g.T
     stroke_rate = rate @ g.T
     pto_force = command - (p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
-    n = compiled.n_steps
-    window = np.arange(time.size) >= n - max(1, round(compiled.scene.outputs.window * n)) + 1
-    power = -(pto_force + p.pto_spring * stroke) * stroke_rate
-    xs = stroke[window]
-    stats = np.stack([power[window].sum(0), (xs**2).sum(0), np.full(n_pto, float(window.sum())), xs.sum(0)])
+    stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
     run_time = _time.perf_counter() - start
     record = Record(
         time[keep], (compiled.q0[None] + xi)[keep], rate[keep], acc, stroke[keep], stroke_rate[keep],

@@ -114,6 +114,22 @@ def _diverged(status: int, step: int, compiled: CompiledScene, q: np.ndarray, v:
     )
 
 
+def stats_start(compiled: CompiledScene) -> int:
+    """First step of the statistics window (the last ``outputs.window`` share of the steps)."""
+    n = compiled.n_steps
+    return n - max(1, round(compiled.scene.outputs.window * n)) + 1
+
+
+def window_statistics(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Sums over the statistics window of every-step PTO strokes ``x``, rates ``xd`` and forces ``f``
+    (n_steps + 1, n_pto): absorbed power (the device spring left out, as conservative), stroke^2, count, stroke;
+    what the fixed-step kernels accumulate as they go."""
+    window = slice(stats_start(compiled), None)
+    power = -(f[window] + compiled.plant.pto_spring * x[window]) * xd[window]
+    xs = x[window]
+    return np.stack([power.sum(0), (xs**2).sum(0), np.full(x.shape[1], float(xs.shape[0])), xs.sum(0)])
+
+
 def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
     from controllers import Measurement
 
@@ -125,7 +141,7 @@ def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
     nq, nv, n_pto, n_h = compiled.q0.size, p.twists.shape[0], p.pto_kind.size, p.hydro_index.size
     out = Store(
         every=every,
-        stats_start=n - max(1, round(scene.outputs.window * n)) + 1,
+        stats_start=stats_start(compiled),
         q=np.zeros((n_save, nq)),
         v=np.zeros((n_save, nv)),
         a=np.zeros((n_save, nv)),
@@ -232,12 +248,12 @@ def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
         qd, a, zd, *_ = parts(t, y)
         return np.concatenate([qd, a, zd.real, zd.imag])
 
-    every = scene.outputs.every
-    saved = np.arange(compiled.n_steps // every + 1) * every * compiled.dt
+    every = scene.outputs.every if not scene.outputs.statistics_only else compiled.n_steps + 1
+    time = compiled.time  # every step, to the end, for the statistics; the saved ones are every ``every``-th
     y0 = np.concatenate([compiled.q0, np.zeros(nv + 2 * nz)])
     start = _time.perf_counter()
     sol = solve_ivp(
-        rates, (0.0, saved[-1]), y0, method="DOP853", t_eval=saved, rtol=scene.solver.reference_rtol, atol=1e-12
+        rates, (0.0, time[-1]), y0, method="DOP853", t_eval=time, rtol=scene.solver.reference_rtol, atol=1e-12
     )
     if not sol.success:
         raise SimulationDiverged(f"reference solver failed: {sol.message}", float(sol.t[-1]), -1, {"y": sol.y[:, -1]})
@@ -248,13 +264,11 @@ def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
         for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7))
     }
     stack["q"], stack["v"] = sol.y[:nq].T.copy(), sol.y[nq : nq + nv].T.copy()
-    window = saved > saved[-1] * (1 - scene.outputs.window)
-    power = -(stack["f"] + p.pto_spring * stack["x"]) * stack["xd"]
-    x = stack["x"][window]
-    stats = np.stack([power[window].sum(0), (x**2).sum(0), np.full(power.shape[1], float(window.sum())), x.sum(0)])
+    stats = window_statistics(compiled, stack["x"], stack["xd"], stack["f"])
     if progress:
         print(f"reference solver: {sol.nfev} evaluations", file=sys.stderr)
-    return Record(saved, **stack, stats=stats, evaluations=np.array([sol.nfev, 0, 0]), run_time=run_time)
+    saved = {k: v[::every] for k, v in stack.items()}
+    return Record(time[::every], **saved, stats=stats, evaluations=np.array([sol.nfev, 0, 0]), run_time=run_time)
 
 
 def simulate(scene: Scene | CompiledScene | str | Path, *, progress: bool = False) -> xr.Dataset:
