@@ -85,7 +85,7 @@ def evaluate(coefficients: np.ndarray, omega: np.ndarray, time: np.ndarray, *, c
     Take the real part for Re[...] signals. Three ways, fastest first:
 
     - uniform times on which the components are periodic (omega_k dt / 2 pi = m_k / P with integers m_k and a
-      period of P <= FFT_MAX_PERIOD_FACTOR times the number of times steps, as for periodic records sampled at a
+      period of P <= FFT_MAX_PERIOD_FACTOR times the number of times, as for periodic records sampled at a
       divisor of their period): one inverse FFT of length P per row;
     - other uniform times: phasors from a product recurrence, exp(i omega (t0 + k dt)) = exp(i omega t0)
       exp(i omega dt)^k, restarted from an exact exponential every RECURRENCE_RESTART steps (relative error below
@@ -124,7 +124,8 @@ times (else the recurrence is cheaper)."""
 
 FFT_PHASE_TOL: float = 1e-10
 """Largest drift allowed on the FFT path [cycles per period]: omega_k dt P / (2 pi) may differ from an integer by
-this much (the phase error it causes stays below 2 pi 1e-10 over a period)."""
+this much, so the phase error stays below 2 pi 1e-10 per period of the record (round-off of the harmonic numbers
+is about 1e-13)."""
 
 
 def _fft_period(omega: np.ndarray, dt: float, n_times: int) -> int | None:
@@ -138,7 +139,7 @@ def _fft_period(omega: np.ndarray, dt: float, n_times: int) -> int | None:
     if period < 1 or period > FFT_MAX_PERIOD_FACTOR * n_times + 1024:
         return None
     harmonics = cycles * period
-    if np.max(np.abs(harmonics - np.round(harmonics))) > FFT_PHASE_TOL * max(1.0, float(harmonics.max())):
+    if np.max(np.abs(harmonics - np.round(harmonics))) > FFT_PHASE_TOL:
         return None
     return period
 
