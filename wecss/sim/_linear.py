@@ -27,7 +27,7 @@ from scipy.linalg import expm
 from ..radiation import RadiationStateSpace
 from ._compile import CompiledScene, fit_request
 from ._frequency import equilibrium_maps
-from ._modal_recursion import ModalForm, ModalSteps, outputs, real_part_rows, run
+from ._modal_recursion import ModalForm, ModalSteps, input_forcing, outputs, real_part_rows, run
 
 
 @dataclass(frozen=True, eq=False)
@@ -405,10 +405,8 @@ def _closed_loop(
     rows = np.zeros((2 * n_pto, model.n_states))
     rows[:n_pto, :nv] = g
     rows[n_pto:, nv : 2 * nv] = g
-    measure_modes = real_part_rows((rows[:, form.rest] @ form.shapes).T)
-    measure_free = rows[:, form.free]
-    forcing = force[:-1] @ steps.input0.T + force[1:] @ steps.input1.T
-    free_forcing = force[:-1] @ steps.free_input0.T + force[1:] @ steps.free_input1.T
+    measure_modes, measure_free = form.output_maps(rows)
+    forcing, free_forcing = input_forcing(steps, force)
     free_modes = real_part_rows(steps.free_state.T)
     z = np.zeros((time.size, form.n_modes), dtype=complex)
     free = np.zeros((time.size, form.free.size))
@@ -417,7 +415,7 @@ def _closed_loop(
     out = np.zeros(n_pto)
     for k in range(time.size):
         if k % control == 0:  # a control step: the controller's force is held until the next one
-            measured = z[k].view(np.float64) @ measure_modes + measure_free @ free[k]
+            measured = z[k].view(np.float64) @ measure_modes + free[k] @ measure_free
             out = np.asarray(
                 compiled.controller.compute(time[k], Measurement(stroke0 + measured[:n_pto], measured[n_pto:])),
                 dtype=float,

@@ -99,6 +99,12 @@ class ModalForm:
         """Number of kept modes."""
         return int(self.poles.size)
 
+    def output_maps(self, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Real matrices (R_modes, R_free) with C x = z.view(float) @ R_modes + free @ R_free for the output
+        matrix ``c`` (n_out, n_states)."""
+        c = np.asarray(c, dtype=float)
+        return real_part_rows((c[:, self.rest] @ self.shapes).T), c[:, self.free].T
+
     def steps(self, b: np.ndarray, dt: float, hold: str) -> ModalSteps:
         """The exact step of ``dt`` [s] for the input matrix ``b`` (n_states, m) under ``hold`` ("foh" or "zoh")."""
         if hold not in ("foh", "zoh"):
@@ -174,39 +180,41 @@ BLOCK_STEPS: int = 512
 """Steps per block of :func:`run`: the block's modal coordinates stay in cache instead of filling memory."""
 
 
+def input_forcing(steps: ModalSteps, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """What the inputs u (n, m) [one row per step] add over the n - 1 steps between them: to the modal
+    coordinates (complex (n - 1, n_modes)) and to the free states ((n - 1, n_free))."""
+    u = np.ascontiguousarray(u, dtype=float)
+    modes = (u[:-1] @ complex_columns(steps.input0.T) + u[1:] @ complex_columns(steps.input1.T)).view(np.complex128)
+    return modes, u[:-1] @ steps.free_input0.T + u[1:] @ steps.free_input1.T
+
+
 def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np.ndarray | None = None) -> np.ndarray:
     """Outputs y = C x (n_t, n_out) at every step for the inputs u (n_t, m) [one row per step], from the state x0
     (default zero), in blocks of BLOCK_STEPS steps."""
     u = np.ascontiguousarray(u, dtype=float)
     x0 = np.zeros(form.n_states) if x0 is None else np.asarray(x0, dtype=float)
-    c = np.asarray(c, dtype=float)
-    input0, input1 = complex_columns(steps.input0.T), complex_columns(steps.input1.T)
     free_modes = real_part_rows(steps.free_state.T)
-    out_modes, out_free = real_part_rows((c[:, form.rest] @ form.shapes).T), c[:, form.free].T
-    y = np.empty((u.shape[0], c.shape[0]))
+    out_modes, out_free = form.output_maps(c)
+    y = np.empty((u.shape[0], out_free.shape[1]))
     z = (form.inverse @ x0[form.rest]).astype(complex)
     free = x0[form.free].copy()
     for k0 in range(0, u.shape[0], BLOCK_STEPS):
         k1 = min(u.shape[0], k0 + BLOCK_STEPS)  # block of steps k0 ... k1 - 1, started from z_k0
-        forcing = (u[k0 : k1 - 1] @ input0 + u[k0 + 1 : k1] @ input1).view(np.complex128)
+        forcing, free_forcing = input_forcing(steps, u[k0:k1])
         block = modal_recursion(steps.decay, forcing, z).view(np.float64)
-        increments = (
-            block[:-1] @ free_modes + u[k0 : k1 - 1] @ steps.free_input0.T + u[k0 + 1 : k1] @ steps.free_input1.T
-        )
         frees = np.empty((k1 - k0, free.size))
         frees[0] = free
-        np.cumsum(increments, axis=0, out=frees[1:])
+        np.cumsum(block[:-1] @ free_modes + free_forcing, axis=0, out=frees[1:])
         frees[1:] += free
         y[k0:k1] = block @ out_modes + frees @ out_free
         if k1 < u.shape[0]:  # the step from k1 - 1 to k1 starts the next block
-            last = block[-1].view(np.complex128)
-            z = steps.decay * last + (u[k1 - 1] @ input0 + u[k1] @ input1).view(np.complex128)
-            free = frees[-1] + last.view(np.float64) @ free_modes + u[k1 - 1] @ steps.free_input0.T
-            free = free + u[k1] @ steps.free_input1.T
+            forcing, free_forcing = input_forcing(steps, u[k1 - 1 : k1 + 1])
+            z = steps.decay * block[-1].view(np.complex128) + forcing[0]
+            free = frees[-1] + block[-1] @ free_modes + free_forcing[0]
     return y
 
 
 def outputs(form: ModalForm, c: np.ndarray, z: np.ndarray, free: np.ndarray) -> np.ndarray:
     """y = C x (n_t, n_out) from modal coordinates z (n_t, n_modes) and free states (n_t, n_free)."""
-    c = np.asarray(c, dtype=float)
-    return z.view(np.float64) @ real_part_rows((c[:, form.rest] @ form.shapes).T) + free @ c[:, form.free].T
+    out_modes, out_free = form.output_maps(c)
+    return z.view(np.float64) @ out_modes + free @ out_free
