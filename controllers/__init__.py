@@ -1,12 +1,9 @@
-"""PTO controllers for wecss, registered through the ``wecss.controllers`` entry-point group.
+"""The built-in PTO controllers of wecss, registered through the ``wecss.controllers`` entry-point group.
 
-A controller is set up once with ``setup(model, dt)`` and then asked for the PTO forces every control step with
-``compute(t, measurement)`` (DESIGN.md, "Controllers"). Built-ins: ``damping`` (linear damping, with the M4
-paper's 6 N m s/rad as its default). Third-party packages register theirs under the same entry-point group.
+Each follows the protocol of :mod:`wecss.control` (``setup(context)`` once per run, then ``compute(t,
+measurement)`` every control period; DESIGN.md, "Controllers"). Built-ins: ``damping`` (linear damping, by
+default the device's PTO damping: the M4 paper's 6 N m s/rad). Third-party packages register theirs under the
+same entry-point group.
 """
 
-from ._base import Controller as Controller
-from ._base import Measurement as Measurement
-from ._base import available as available
-from ._base import create as create
 from ._damping import LinearDamping as LinearDamping

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._base import Measurement
+from wecss.control import ControlContext, Measurement
 
 
 class LinearDamping:
@@ -12,8 +12,9 @@ class LinearDamping:
 
     Parameters
     ----------
-    damping : float or sequence of float
-        c [N s/m or N m s/rad]; one value for all PTOs or one per PTO. Default: the M4 paper's 6 N m s/rad.
+    damping : float or sequence of float or None
+        c [N s/m or N m s/rad]; one value for all PTOs or one per PTO. Default (None): the device's PTO damping
+        (:attr:`wecss.control.ControlContext.default_damping`; the M4 paper's 6 N m s/rad for the M4 devices).
     stiffness : float or sequence of float
         k [N/m or N m/rad] (default 0).
 
@@ -25,22 +26,19 @@ class LinearDamping:
 
     needs_state = False
 
-    def __init__(self, damping: float | list[float] = 6.0, stiffness: float | list[float] = 0.0) -> None:
-        self._damping = np.atleast_1d(np.asarray(damping, dtype=float))
-        self._stiffness = np.atleast_1d(np.asarray(stiffness, dtype=float))
-        for label, values in (("damping", self._damping), ("stiffness", self._stiffness)):
-            if not np.all(np.isfinite(values)):
-                raise ValueError(f"{label} must be finite; got {values.tolist()}")
-        if np.any(self._damping < 0):
-            raise ValueError(f"damping must be >= 0 (a negative damping injects energy); got {self._damping.tolist()}")
-        self.c = self._damping
+    def __init__(self, damping: float | list[float] | None = None, stiffness: float | list[float] = 0.0) -> None:
+        self._damping = None if damping is None else _gains("damping", damping)
+        self._stiffness = _gains("stiffness", stiffness)
+        self.c = self._damping if self._damping is not None else np.zeros(0)  # per PTO once set up
         self.k = self._stiffness
 
-    def setup(self, n_pto: int, dt: float) -> None:
-        for label, values in (("damping", self._damping), ("stiffness", self._stiffness)):
+    def setup(self, context: ControlContext) -> None:
+        n_pto = context.n_pto
+        damping = _gains("default_damping", context.default_damping) if self._damping is None else self._damping
+        for label, values in (("damping", damping), ("stiffness", self._stiffness)):
             if values.size not in (1, n_pto):
                 raise ValueError(f"{label} has {values.size} values; the device has {n_pto} PTOs (give 1 or {n_pto})")
-        self.c = np.broadcast_to(self._damping, (n_pto,)).copy()
+        self.c = np.broadcast_to(damping, (n_pto,)).copy()
         self.k = np.broadcast_to(self._stiffness, (n_pto,)).copy()
 
     def linear_gains(self) -> tuple[np.ndarray, np.ndarray]:
@@ -50,3 +48,13 @@ class LinearDamping:
 
     def compute(self, t: float, measurement: Measurement) -> np.ndarray:
         return -self.c * measurement.velocity - self.k * measurement.displacement
+
+
+def _gains(label: str, values: float | list[float] | tuple[float, ...]) -> np.ndarray:
+    """Gains as a 1-d float array, checked finite (and non-negative for damping)."""
+    out = np.atleast_1d(np.asarray(values, dtype=float))
+    if not np.all(np.isfinite(out)):
+        raise ValueError(f"{label} must be finite; got {out.tolist()}")
+    if "damping" in label and np.any(out < 0):
+        raise ValueError(f"{label} must be >= 0 (a negative damping injects energy); got {out.tolist()}")
+    return out

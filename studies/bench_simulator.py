@@ -76,8 +76,8 @@ def pure_python_step(device: str) -> float:
 def linear_times(scene: Scene, repeats: int) -> dict[str, float]:
     """Median seconds on one scene: the linear run (its loop, and the whole call with the Dataset), the
     frequency-domain solution at every step, the nonlinear run's loop, and the linearisation (first and cached)."""
+    from wecss.linear import steady_state
     from wecss.sim import linearize, simulate_linear
-    from wecss.sim._frequency import steady_state
 
     compiled = compile_scene(scene)
     start = time.perf_counter()

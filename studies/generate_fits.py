@@ -15,11 +15,10 @@ from __future__ import annotations
 import argparse
 import time
 
+from wecss.compiled import fit_request
 from wecss.devices import load as load_device
-from wecss.radiation import _cache as cache
-from wecss.radiation import fit_cache_key, fit_radiation
-from wecss.sim import Scene
-from wecss.sim._compile import fit_request
+from wecss.radiation import SHIPPED_FITS_DIR, fit_cache_key, fit_radiation, load_cached_fit, store_fit
+from wecss.scene import Scene
 
 DATABASES = ("m4-111", "m4-132", "m4-134")
 
@@ -32,16 +31,16 @@ def main() -> None:
         hydro = load_device(name).coupling().hydro
         settings, band = fit_request(Scene(), hydro)  # what a default scene with state-space radiation asks for
         key = fit_cache_key(hydro, settings, band)
-        shipped = cache.SHIPPED_DIR / f"{key}.nc"
+        shipped = SHIPPED_FITS_DIR / f"{key}.nc"
         if args.quick:
             if not shipped.is_file():
                 raise SystemExit(f"{name}: no shipped fit for today's data and settings ({shipped.name})")
-            model, _ = cache.load(key)  # type: ignore[misc]
+            model, _ = load_cached_fit(key)  # type: ignore[misc]
             print(f"{name}: shipped fit {shipped.name}, {model.n_states} states, {shipped.stat().st_size / 1e3:.0f} kB")
             continue
         start = time.perf_counter()
         fit = fit_radiation(hydro, settings, band=band)  # a fresh fit: the cache would return the shipped one
-        path = cache.store(key, fit.model.real_modal(), fit.report, folder=cache.SHIPPED_DIR)
+        path = store_fit(key, fit.model.real_modal(), fit.report, folder=SHIPPED_FITS_DIR)
         print(
             f"{name}: {fit.model.n_states} states in {time.perf_counter() - start:.1f} s -> {path} "
             f"({path.stat().st_size / 1e3:.0f} kB)"

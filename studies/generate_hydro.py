@@ -21,8 +21,7 @@ import time
 import warnings
 from pathlib import Path
 
-from wecss.hydro import HydroData
-from wecss.hydro._catalogue import DATA_DIR
+from wecss.hydro import DATA_DIR, HydroData
 from wecss.hydro.bem import BEMSpec, read_geometry, run_bem
 from wecss.netcdf import write_netcdf
 

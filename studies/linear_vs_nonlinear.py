@@ -19,9 +19,9 @@ import numpy as np
 import xarray as xr
 from _common import ROOT
 
+from wecss.linear import steady_state
 from wecss.results import mean_power, rms_hinge_angle, save
 from wecss.sim import Scene, compile_scene, linearize, simulate, simulate_linear
-from wecss.sim._frequency import steady_state
 
 
 def run(device: str, height: float, duration: str) -> dict[str, float]:

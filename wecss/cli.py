@@ -66,8 +66,9 @@ def _info(target: str | None) -> int:
 
 def _modes(device: str) -> str:
     """The modal table of a device in calm water (its own hydrodynamic database), or why there is none."""
-    from .sim import Scene, SceneError, compile_scene
-    from .sim._modes import format_modal_table, modal_table
+    from .compiled import compile_scene
+    from .linear import format_modal_table, modal_table
+    from .scene import Scene, SceneError
 
     calm = {"kind": "calm", "period": None, "duration": 10.0, "ramp": 0.0}
     try:

@@ -188,14 +188,13 @@ def test_real_modal_form_keeps_the_kernel() -> None:
 def test_shipped_fits_are_found_when_the_user_cache_is_empty(tmp_path, monkeypatch) -> None:
     """Band-limited fits of the shipped M4 databases ship with the package (studies/generate_fits.py)."""
     from wecss.devices import load as load_device
-    from wecss.radiation import _cache as cache
-    from wecss.radiation import fit_cache_key
+    from wecss.radiation import fit_cache_key, load_cached_fit
 
     monkeypatch.setenv("WECSS_CACHE_DIR", str(tmp_path))
     hydro = load_device("m4-111").coupling().hydro
     top = float(hydro.omega[-1])
     key = fit_cache_key(hydro, FitSettings(method="era-mimo"), (0.6 * top, top))
-    hit = cache.load(key)
+    hit = load_cached_fit(key)
     assert hit is not None
     model, report = hit
     assert model.n_states == int(report.attrs["n_states"]) and model.is_stable(0.0)

@@ -12,6 +12,7 @@ import pytest
 import xarray as xr
 
 from tests.sim.scenes import held, scene
+from wecss.linear import linearize
 from wecss.results import (
     capture_width_ratio,
     mean_power,
@@ -23,7 +24,6 @@ from wecss.results import (
     spectral_moments,
 )
 from wecss.sim import JIT, compile_scene, simulate
-from wecss.sim._frequency import frequency_response
 from wecss.waves import Jonswap, deep_water_wavelength, energy_flux, energy_period, mean_period
 
 
@@ -129,7 +129,8 @@ def test_regular_wave_rao_matches_the_frequency_domain():
         compiled = compile_scene(sc)
         runs.append(simulate(compiled))
         omega = 2 * np.pi / period
-        h, lin = frequency_response(compiled, np.array([omega]))
+        lin = linearize(compiled)
+        h = lin.frequency_response(np.array([omega]))
         per_amplitude = compiled.excitation.coefficients[:, 0] / (0.004 / 2)
         expected.append(np.abs(lin.pto_jacobian @ h[0] @ per_amplitude))
     rao = rao_regular(runs)  # sorted by omega: the 1.3 s run first

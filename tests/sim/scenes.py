@@ -8,9 +8,10 @@ from typing import Any
 import numpy as np
 
 from controllers import LinearDamping
+from wecss.compiled import from_state_space
+from wecss.control import ControlContext
 from wecss.radiation import RadiationStateSpace
 from wecss.sim import CompiledScene, Scene, compile_scene
-from wecss.sim._radiation import from_state_space
 
 
 def scene(device: str = "m4-111", **sections: dict[str, Any]) -> Scene:
@@ -62,8 +63,8 @@ class HeldDamping:
     def __init__(self, damping: float = 6.0) -> None:
         self.inner = LinearDamping(damping)
 
-    def setup(self, n_pto: int, dt: float) -> None:
-        self.inner.setup(n_pto, dt)
+    def setup(self, context: ControlContext) -> None:
+        self.inner.setup(context)
 
     def compute(self, t: float, measurement: Any) -> np.ndarray:
         return self.inner.compute(t, measurement)

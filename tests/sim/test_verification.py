@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import compiled_with_state_space, scene
+from wecss.compiled import accelerations, poses
+from wecss.linear import steady_state
 from wecss.sim import SimulationDiverged, compile_scene, simulate
-from wecss.sim._frequency import steady_state
-from wecss.sim._kernels import accelerations, poses
 
 
 def _rms(x: np.ndarray, axis: int = 0) -> np.ndarray:

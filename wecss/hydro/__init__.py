@@ -1,5 +1,6 @@
 """Hydrodynamic databases: one xarray schema, readers, BEM generation, reference-point transforms, checks."""
 
+from ._catalogue import DATA_DIR as DATA_DIR
 from ._catalogue import available as available
 from ._catalogue import load as load
 from ._hydrodata import HydroData as HydroData
@@ -8,6 +9,7 @@ from ._irregular import find_irregular_frequencies as find_irregular_frequencies
 from ._irregular import remove_irregular_frequencies as remove_irregular_frequencies
 from ._repair import RepairReport as RepairReport
 from ._repair import repair as repair
+from ._schema import dof_index as dof_index
 from ._schema import dof_name as dof_name
 from ._schema import split_dof as split_dof
 from ._select import select as select

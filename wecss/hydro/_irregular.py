@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from ._validate import negligible_dofs
+from ._peaks import negligible_dofs
 
 SPIKE_RTOL: float = 0.2
 """A point departing from its leave-one-out cubic prediction by more than this fraction of the peak is a spike.

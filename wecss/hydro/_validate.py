@@ -11,6 +11,8 @@ import warnings
 import numpy as np
 import xarray as xr
 
+from ._irregular import describe_bands, find_irregular_frequencies
+from ._peaks import diagonal_peaks, negligible_dofs
 from ._schema import (
     COMPLEX_VARIABLES,
     OPTIONAL_VARIABLES,
@@ -26,10 +28,6 @@ are judged fairly; BEM codes often miss it on body-to-body couplings (``wecss.hy
 
 NEGATIVE_DAMPING_RTOL: float = 1e-3
 """Largest accepted negative diagonal damping, relative to that diagonal entry's peak over omega."""
-
-NEGLIGIBLE_RTOL: float = 1e-6
-"""A DOF whose damping peak is below this fraction of the largest damping peak of its kind (translation or
-rotation) is numerical noise (yaw of an axisymmetric body): its sign and spikes are not checked."""
 
 
 class WecssWarning(UserWarning):
@@ -160,15 +158,6 @@ def _check_finite(ds: xr.Dataset) -> None:
             raise HydroDataError(f"variable {name!r} has non-finite values at " + "; ".join(where))
 
 
-def diagonal_peaks(ds: xr.Dataset, name: str) -> np.ndarray:
-    """Peak over omega of each diagonal entry |M_ii| of a frequency-dependent matrix (A_inf included for added mass)."""
-    diag = np.abs(np.diagonal(ds[name].values, axis1=-2, axis2=-1))
-    peak = np.max(diag, axis=0)
-    if name == "added_mass" and "added_mass_inf" in ds:
-        peak = np.maximum(peak, np.abs(np.diag(ds.added_mass_inf.values)))
-    return peak
-
-
 def relative_asymmetry(ds: xr.Dataset, name: str) -> np.ndarray:
     """|M_ij - M_ji| / sqrt(P_i P_j) over (omega, i, j), P the diagonal peaks (see :data:`SYMMETRY_RTOL`)."""
     values = ds[name].values
@@ -176,17 +165,6 @@ def relative_asymmetry(ds: xr.Dataset, name: str) -> np.ndarray:
     scale = np.sqrt(np.outer(peak, peak))
     scale = np.where(scale > 0, scale, np.inf)
     return np.abs(values - np.swapaxes(values, -1, -2)) / scale
-
-
-def negligible_dofs(ds: xr.Dataset) -> np.ndarray:
-    """Boolean per DOF: damping peak below :data:`NEGLIGIBLE_RTOL` of the largest peak of its kind."""
-    peak = diagonal_peaks(ds, "radiation_damping")
-    rotation = np.array([split_dof(d)[1] in ("Roll", "Pitch", "Yaw") for d in ds.radiating_dof.values])
-    out = np.zeros(peak.shape, dtype=bool)
-    for kind in (rotation, ~rotation):
-        if np.any(kind):
-            out[kind] = peak[kind] < NEGLIGIBLE_RTOL * np.max(peak[kind])
-    return out
 
 
 def _check_symmetry(ds: xr.Dataset, name: str) -> None:
@@ -219,8 +197,6 @@ def _check_damping_sign(ds: xr.Dataset) -> None:
 
 def warn_irregular_frequencies(ds: xr.Dataset) -> None:
     """Warn with :class:`IrregularFrequencyWarning` when :func:`find_irregular_frequencies` finds bands."""
-    from ._irregular import describe_bands, find_irregular_frequencies
-
     bands = find_irregular_frequencies(ds)
     if bands:
         text = describe_bands(bands)

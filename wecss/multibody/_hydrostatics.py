@@ -12,8 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..hydro import HydroData, split_dof
-from ..hydro._schema import dof_index
+from ..hydro import HydroData, dof_index, split_dof
 from ._kinematics import KinematicState
 from ._se3 import so3_log
 from ._tree import Multibody

@@ -1,7 +1,12 @@
 """Radiation memory: impulse responses, convolution, state-space fits (Prony / matrix pencil, Hankel-SVD
 realisation), stability and passivity checks and repair, fit reports."""
 
+from ._cache import SHIPPED_FITS_DIR as SHIPPED_FITS_DIR
+from ._cache import load_cached_fit as load_cached_fit
+from ._cache import store_fit as store_fit
+from ._convolution import MEMORY_FACTOR as MEMORY_FACTOR
 from ._convolution import RadiationConvolution as RadiationConvolution
+from ._couplings import significant_couplings as significant_couplings
 from ._fit import FitSettings as FitSettings
 from ._fit import RadiationFit as RadiationFit
 from ._fit import fit_cache_key as fit_cache_key

@@ -41,11 +41,11 @@ def cache_key(hydro: HydroData, *parts: object) -> str:
     return h.hexdigest()[:32]
 
 
-SHIPPED_DIR = Path(__file__).resolve().parent.parent / "data" / "radiation"
+SHIPPED_FITS_DIR = Path(__file__).resolve().parent.parent / "data" / "radiation"
 """Folder of the fits shipped with the package."""
 
 
-def store(key: str, model: RadiationStateSpace, report: xr.Dataset, *, folder: Path | None = None) -> Path:
+def store_fit(key: str, model: RadiationStateSpace, report: xr.Dataset, *, folder: Path | None = None) -> Path:
     """Write a fit to the cache (or to ``folder``, compressed); returns the file."""
     compress = folder is not None
     folder = cache_dir() if folder is None else folder
@@ -59,11 +59,11 @@ def store(key: str, model: RadiationStateSpace, report: xr.Dataset, *, folder: P
     return write_netcdf(ds, folder / f"{key}.nc", compress=compress)
 
 
-def load(key: str) -> tuple[RadiationStateSpace, xr.Dataset] | None:
+def load_cached_fit(key: str) -> tuple[RadiationStateSpace, xr.Dataset] | None:
     """A cached fit (the user's cache first, then the shipped fits), or None."""
     path = cache_dir() / f"{key}.nc"
     if not path.is_file():
-        path = SHIPPED_DIR / f"{key}.nc"
+        path = SHIPPED_FITS_DIR / f"{key}.nc"
     if not path.is_file():
         return None
     ds = read_netcdf(path)

@@ -3,7 +3,8 @@
 Targets (per fitted entry, DESIGN.md and the radiation issue): K(0) error and RMS error of K(t) within 1 % of
 the entry's peak, B(omega) and A(omega) - A_inf reconstructed within 2 % of their peaks over the data band. The
 order grows until every target holds (or the maximum order is reached; the report then shows the miss). Entries
-whose kernel peak is below ``coupling_threshold`` sqrt(P_i P_j) (P the diagonal peaks) are left out and listed.
+that the coupling rule of ``wecss.radiation.significant_couplings`` drops are left out (per-entry fits) or not
+judged (the MIMO fit realises the whole kernel), and listed.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import xarray as xr
 from scipy.linalg import block_diag, null_space
 
 from ..hydro import HydroData
+from ._couplings import significant_couplings
 from ._irf import ImpulseResponse, impulse_response
 from ._modal import hankel_realisation, matrix_pencil, realise
 from ._statespace import STABILITY_DAMPING, RadiationStateSpace, Repair, enforce_passivity, passivity_grid
@@ -41,8 +43,9 @@ class FitSettings:
         Matrix-pencil Prony per entry, Hankel-SVD realisation per entry, or one Hankel-SVD realisation of the whole
         MIMO kernel (shared poles).
     coupling_threshold : float
-        Entries whose kernel peak is below this fraction of the largest diagonal peak are not fitted (reported as
-        dropped); the radiation issue's targets apply to the others.
+        Entries whose kernel peak is below this share of sqrt(P_i P_j) (P the diagonal peaks; the rule of
+        :func:`significant_couplings`, the same as the convolution's) are not fitted or judged (reported as
+        dropped); the targets apply to the others. Scenes pass their ``radiation.coupling_threshold``.
     k0_tol, rms_tol, frequency_tol : float
         Targets: K(0) and RMS errors relative to the entry's peak; B and A - A_inf errors relative to their peaks.
     max_order : int
@@ -54,7 +57,7 @@ class FitSettings:
     """
 
     method: Method = "prony"
-    coupling_threshold: float = 0.01
+    coupling_threshold: float = 1e-3
     k0_tol: float = 0.01
     rms_tol: float = 0.01
     frequency_tol: float = 0.02
@@ -133,16 +136,18 @@ def _siso(a: np.ndarray, b: np.ndarray, c: np.ndarray, time: np.ndarray, omega: 
 
 
 def _entries(irf: ImpulseResponse, threshold: float) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
-    """Entries (i <= j) whose kernel peak is at least ``threshold`` times the largest diagonal peak, and the rest."""
-    peak = np.max(np.abs(irf.kernel), axis=0)
-    largest = float(np.max(np.diag(peak)))
-    n = peak.shape[0]
-    fitted: list[tuple[int, int]] = []
-    dropped: list[tuple[int, int]] = []
-    for i in range(n):
-        for j in range(i, n):
-            (fitted if peak[i, j] >= threshold * largest and peak[i, j] > 0 else dropped).append((i, j))
+    """Entries (i <= j) that :func:`significant_couplings` keeps, and the rest."""
+    kept = significant_couplings(np.max(np.abs(irf.kernel), axis=0), threshold)
+    n = kept.shape[0]
+    fitted = [(i, j) for i in range(n) for j in range(i, n) if kept[i, j]]
+    dropped = [(i, j) for i in range(n) for j in range(i, n) if not kept[i, j]]
     return fitted, dropped
+
+
+def _score(errors: tuple[float, float, float, float], settings: FitSettings) -> float:
+    """The largest ratio of an entry's (K(0), RMS K(t), B, A - A_inf) errors to their targets (1: on target)."""
+    k0, rms, b, a = errors
+    return max(k0 / settings.k0_tol, rms / settings.rms_tol, b / settings.frequency_tol, a / settings.frequency_tol)
 
 
 def _lowest_near_best(candidates: list[tuple[float, int, object]]) -> object:
@@ -173,12 +178,7 @@ def _fit_entry(
             continue
         kernel, response = _siso(a, b, c, ref.time, ref.omega)
         errors = ref.errors(i, j, kernel, response)
-        score = max(
-            errors[0] / settings.k0_tol,
-            errors[1] / settings.rms_tol,
-            errors[2] / settings.frequency_tol,
-            errors[3] / settings.frequency_tol,
-        )
+        score = _score(errors, settings)
         candidates.append((score, a.shape[0], (a, b, c, a.shape[0], errors)))
         if score <= 1.0:
             return a, b, c, a.shape[0], errors
@@ -266,15 +266,7 @@ def _fit_mimo(hydro: HydroData, irf: ImpulseResponse, settings: FitSettings):
         kernel = model.kernel(judged.time)
         response = model.frequency_response(ref.omega)
         rows = [(i, j, order, *judged.errors(i, j, kernel[:, i, j], response[:, i, j])) for i, j in fitted]
-        score = max(
-            max(
-                e[3] / settings.k0_tol,
-                e[4] / settings.rms_tol,
-                e[5] / settings.frequency_tol,
-                e[6] / settings.frequency_tol,
-            )
-            for e in rows
-        )
+        score = max(_score(e[3:], settings) for e in rows)
         candidates.append((score, order, (model, rows)))
         if score <= 1.0:
             break
@@ -330,10 +322,8 @@ def fit_radiation(
     if cache and irf is None:
         from . import _cache
 
-        key = _cache.cache_key(
-            hydro, asdict(settings), "irf-default" if band is None else f"band-{band[0]:.12g}-{band[1]:.12g}"
-        )
-        hit = _cache.load(key)
+        key = fit_cache_key(hydro, settings, band)
+        hit = _cache.load_cached_fit(key)
         if hit is not None:
             return RadiationFit(hit[0], hit[1], Repair(), make_irf())
     irf = irf or make_irf()
@@ -352,7 +342,7 @@ def fit_radiation(
     if key is not None:
         from . import _cache
 
-        _cache.store(key, model, report)
+        _cache.store_fit(key, model, report)
     return RadiationFit(model, report, repair, irf)
 
 

@@ -1,6 +1,6 @@
-"""Results of simulations: the Dataset builder, netCDF I/O, metrics (mean power, CWR, RMS angle, RAO) and plots."""
+"""Analysis of results: netCDF I/O, metrics (mean power, CWR, RMS angle, RAO) and plots. (The result Dataset is
+built by the runs in ``wecss.sim``.)"""
 
-from ._build import build_result as build_result
 from ._io import open_result as open_result
 from ._io import save as save
 from ._metrics import capture_width_ratio as capture_width_ratio

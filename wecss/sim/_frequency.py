@@ -1,111 +1,71 @@
-"""Exact frequency-domain solution of the MFM equations linearised about the static equilibrium.
-
-With xi the generalised displacement from the equilibrium q0 (tangent coordinates):
-
-    [-omega^2 (M* + Bw' (A(omega) - A_inf) Bw) + i omega (C + Bw' B(omega) Bw) + K*] xi_hat = Bw' F_hat(omega)
-
-M* = B(q0)' (M + A_inf) B(q0), Bw the world-frame Jacobian of the hydro DOFs at q0, K* the static stiffness
-(hydrostatics, gravity and PTO springs, with the geometric stiffness of the static loads) plus any controller
-stiffness, C = G' diag(c) G the linear PTO damping through the PTO transmissions G. A(omega) and B(omega) are
-interpolated linearly between the database's frequencies, as the excitation is.
-
-This is the reference the nonlinear simulator must reproduce in small waves (same hydro data, same record).
-"""
+"""Frequency-domain runs (``solver.method = "frequency"``): the exact steady state of the linearised equations on
+the scene's wave components, evaluated at the scene's time steps and laid out as every other result."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import time as _time
 
 import numpy as np
 
-from ..multibody._dynamics import body_mass_matrix
-from ..waves._elevation import evaluate
-from ._compile import CompiledScene
-from ._kernels import kinematics, pto_strokes, world_jacobian
-from ._radiation import interpolate_matrices
+from ..compiled import CompiledScene
+from ..linear import linearize
+from ..waves import evaluate
+from ._result import Record, window_statistics
 
 
-@dataclass(frozen=True)
-class LinearisedMFM:
-    """Matrices of the linearised equations (generalised coordinates, ``velocity_names`` order).
-
-    Attributes
-    ----------
-    mass, damping, stiffness : ndarray (nv, nv)
-        M* (with A_inf), the PTO damping C and K* [SI per coordinate].
-    hydro_jacobian : ndarray (n_h, nv)
-        Bw at the equilibrium: hydro DOF velocities per generalised velocity.
-    pto_jacobian : ndarray (n_pto, nv)
-        PTO stroke rates per generalised velocity.
-    """
-
-    mass: np.ndarray
-    damping: np.ndarray
-    stiffness: np.ndarray
-    hydro_jacobian: np.ndarray
-    pto_jacobian: np.ndarray
-
-
-def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """At the static equilibrium: B (6n, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
-    transmissions G (n_pto, nv) and the PTO strokes from their rest positions (n_pto,)."""
-    p = compiled.plant
-    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(p.twists.shape[0]))
-    stroke, g = pto_strokes(p, compiled.q0, rot, pos, b)
-    return b, world_jacobian(rot, b)[p.hydro_index], g, stroke - p.pto_rest
-
-
-def linearise(compiled: CompiledScene) -> LinearisedMFM:
-    """The linearised MFM matrices about the scene's static equilibrium (linear controllers only).
+def run_frequency_domain(compiled: CompiledScene) -> Record:
+    """The steady state at every step (no ramp, no transient), from the database's A(omega) and B(omega).
 
     Raises
     ------
     ValueError
-        If the scene's controller offers no linear gains.
+        For a device with a free base (its coordinates are not linear).
     """
-    if not compiled.linear_controller:
-        raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
+    if compiled.device.model.nq != compiled.device.model.nv:
+        raise ValueError("the frequency-domain run needs joint coordinates (no free base)")
+    model = linearize(compiled)
+    start = _time.perf_counter()
     p = compiled.plant
-    b, bw, g, _ = equilibrium_maps(compiled)
-    # the database's own A_inf: A(omega) - A_inf is added below (the simulator's A_inf correction is not wanted here)
-    total = body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf
-    mass = b.T @ total @ b
-    stiffness = compiled.stiffness  # device springs and the controller's stiffness included
-    damping = g.T @ np.diag(p.pto_damping) @ g
-    return LinearisedMFM(0.5 * (mass + mass.T), damping, stiffness, bw, g)
+    time = compiled.time
+    nv, n_h = model.mass.shape[0], model.hydro_jacobian.shape[0]
+    keep = slice(None, None, compiled.scene.outputs.every)
+    if compiled.excitation is None:  # calm water: the equilibrium
+        omega = np.zeros(0)
+        coefficients = np.zeros((n_h, 0), dtype=complex)
+        amplitudes = np.zeros((nv, 0), dtype=complex)
+    else:
+        omega, coefficients = compiled.excitation.omega, compiled.excitation.coefficients
+        amplitudes = np.einsum("wvj,jw->vw", model.frequency_response(omega), coefficients)  # (nv, n_w)
 
+    def signal(values: np.ndarray, times: np.ndarray) -> np.ndarray:
+        """Re[sum_k values[:, k] exp(i omega_k t)] at ``times`` (n_t, n_rows)."""
+        if omega.size == 0:
+            return np.zeros((times.size, values.shape[0]))
+        return np.real(evaluate(values, omega, times)).T
 
-def frequency_response(compiled: CompiledScene, omega: np.ndarray) -> tuple[np.ndarray, LinearisedMFM]:
-    """Transfer matrix H(omega) (n_omega, nv, n_h) from hydro-DOF forces to generalised displacements, and the
-    linearised matrices."""
-    lin = linearise(compiled)
-    ds = compiled.hydro.dataset
-    omega = np.atleast_1d(np.asarray(omega, dtype=float))
-    data_omega = compiled.hydro.omega
-    added = interpolate_matrices(data_omega, ds.added_mass.values, omega) - ds.added_mass_inf.values[None]
-    damping = interpolate_matrices(data_omega, ds.radiation_damping.values, omega)
-    bw = lin.hydro_jacobian
-    z = (
-        -(omega**2)[:, None, None] * (lin.mass[None] + bw.T @ added @ bw)
-        + 1j * omega[:, None, None] * (lin.damping[None] + bw.T @ damping @ bw)
-        + lin.stiffness[None]
+    xi = signal(amplitudes, time)
+    rate = signal(1j * omega * amplitudes, time)
+    stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
+    stroke_rate = rate @ model.pto_jacobian.T
+    pto_force = -(p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
+    stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
+    saved = time[keep]
+    velocity_hat = 1j * omega * (model.hydro_jacobian @ amplitudes)  # hydro-DOF velocities (n_h, n_w)
+    added, damping = model.hydro.at(omega)
+    memory_hat = -np.einsum("wij,jw->iw", damping + 1j * omega[:, None, None] * added, velocity_hat)
+    record = Record(
+        saved,
+        compiled.q0[None] + xi[keep],
+        rate[keep],
+        signal(-(omega**2) * amplitudes, saved),
+        stroke[keep],
+        stroke_rate[keep],
+        pto_force[keep],
+        signal(memory_hat, saved),
+        signal(coefficients, saved),
+        stats,
+        0.0,
+        {"solver": "frequency (exact steady state from A(omega) and B(omega); no ramp, no transient)"},
     )
-    return np.linalg.solve(z, np.broadcast_to(bw.T, (omega.size, *bw.T.shape)).astype(complex)), lin
-
-
-def steady_state(compiled: CompiledScene, time: np.ndarray) -> dict[str, np.ndarray]:
-    """Steady-state linear response to the scene's waves (no ramp) at ``time`` [s].
-
-    Returns
-    -------
-    dict
-        ``displacement`` (n_t, nv) generalised displacements from the equilibrium; ``pto`` (n_t, n_pto) PTO
-        strokes from the equilibrium; ``amplitudes`` (nv, n_components) complex.
-    """
-    if compiled.excitation is None:
-        raise ValueError("calm water: the steady state is the equilibrium")
-    exc = compiled.excitation
-    h, lin = frequency_response(compiled, exc.omega)
-    amplitudes = np.einsum("wvj,jw->vw", h, exc.coefficients)
-    xi = np.real(evaluate(amplitudes, exc.omega, np.asarray(time, dtype=float))).T
-    return {"displacement": xi, "pto": xi @ lin.pto_jacobian.T, "amplitudes": amplitudes}
+    record.run_time = _time.perf_counter() - start
+    return record

@@ -13,21 +13,39 @@ trapezoidal rule, solved by Newton's method with a finite-difference Jacobian (s
 fails too the step reports failure (never a silent result).
 
 Classic RK4 on (q, v, z) with the state-space radiation states z (fourth order). Both kernels return a
-status: 0 ok, 1 non-finite state, 2 a bounded coordinate beyond its bound, 3 corrector failed.
+status (:class:`LoopStatus`).
 """
 
 from __future__ import annotations
 
+from enum import IntEnum
 from typing import NamedTuple
 
 import numpy as np
 
-from ._jit import kernel, reduction_kernel
-from ._kernels import accelerations, configuration_rate, integrate_configuration, normalise_quaternions
-from ._plant import Plant
-from ._radiation import RadiationArrays
+from ..compiled import (
+    Plant,
+    RadiationArrays,
+    RadiationKind,
+    accelerations,
+    configuration_rate,
+    integrate_configuration,
+    kernel,
+    normalise_quaternions,
+    reduction_kernel,
+)
 
-OK, NOT_FINITE, OUT_OF_BOUNDS, CORRECTOR_FAILED = 0, 1, 2, 3
+
+class LoopStatus(IntEnum):
+    """How a chunk of steps ended (numba returns the members)."""
+
+    OK = 0
+    NOT_FINITE = 1
+    """The state became non-finite."""
+    OUT_OF_BOUNDS = 2
+    """A bounded coordinate (revolute angle) passed its bound."""
+    CORRECTOR_FAILED = 3
+    """The Beeman corrector (fixed point and Newton) did not converge."""
 
 
 class Store(NamedTuple):
@@ -49,6 +67,34 @@ class Store(NamedTuple):
     save_index: np.ndarray
     stats: np.ndarray
     evaluations: np.ndarray
+
+
+class StepSettings(NamedTuple):
+    """What stays fixed over a run's steps: the step ``h`` [s], the Beeman corrector's relative tolerance ``tol``
+    and ``max_iterations``, and the coordinates ``bounded`` whose size may not pass ``angle_bound`` [rad]."""
+
+    h: float
+    tol: float
+    max_iterations: int
+    bounded: np.ndarray
+    angle_bound: float
+
+
+class LoopState(NamedTuple):
+    """The state the integrators advance in place: configuration ``q``, velocities ``v``, accelerations ``acc``
+    and those of the step before ``acc_prev`` (Beeman), complex radiation states ``z``, the newest hydro velocity
+    ``u_now`` and the convolution's velocity ring buffer ``buf`` with its position ``pos`` (1,), and ``pto_now``
+    (3, n_pto): PTO strokes, rates and forces at the current state (what controllers measure)."""
+
+    q: np.ndarray
+    v: np.ndarray
+    acc: np.ndarray
+    acc_prev: np.ndarray
+    z: np.ndarray
+    u_now: np.ndarray
+    buf: np.ndarray
+    pos: np.ndarray
+    pto_now: np.ndarray
 
 
 ACCELERATION_FLOOR: float = 1e-11
@@ -94,10 +140,10 @@ def _convolve(r: RadiationArrays, buf: np.ndarray, pos: int, n_h: int) -> np.nda
 def memory_history(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, buf: np.ndarray, pos: int) -> np.ndarray:
     """Memory force at the end of the coming step without the newest-velocity term (world axes) [N, N m]."""
     n_h = u_now.shape[0]
-    if r.kind == 1:
+    if r.kind == RadiationKind.STATE_SPACE:
         zz = r.decay * z + r.hold0 @ u_now.astype(np.complex128)
         return -np.real(r.output @ zz)
-    if r.kind == 2:
+    if r.kind == RadiationKind.CONVOLUTION:
         return _convolve(r, buf, pos, n_h)
     return np.zeros(n_h)
 
@@ -107,9 +153,9 @@ def memory_advance(
     r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray, buf: np.ndarray, pos: np.ndarray
 ) -> None:
     """Move the memory over a completed step (states, or the velocity ring buffer, one row per DOF)."""
-    if r.kind == 1:
+    if r.kind == RadiationKind.STATE_SPACE:
         z[:] = r.decay * z + r.hold0 @ u_now.astype(np.complex128) + r.hold1 @ u_new.astype(np.complex128)
-    elif r.kind == 2:
+    elif r.kind == RadiationKind.CONVOLUTION:
         k = (pos[0] + 1) % r.depth
         buf[:, k] = u_new
         buf[:, k + r.depth] = u_new
@@ -162,29 +208,19 @@ def beeman_chunk(
     r: RadiationArrays,
     excitation: np.ndarray,
     command: np.ndarray,
-    h: float,
     step0: int,
-    tol: float,
-    max_iter: int,
-    bounded: np.ndarray,
-    bound: float,
-    q: np.ndarray,
-    v: np.ndarray,
-    acc: np.ndarray,
-    acc_prev: np.ndarray,
-    z: np.ndarray,
-    u_now: np.ndarray,
-    buf: np.ndarray,
-    pos: np.ndarray,
-    pto_now: np.ndarray,
+    settings: StepSettings,
+    state: LoopState,
     out: Store,
 ) -> tuple[int, int]:
-    """Advance ``excitation.shape[0] - 1`` Beeman steps from global step ``step0`` (state arrays updated in place).
+    """Advance ``excitation.shape[0] - 1`` Beeman steps from global step ``step0`` (``state`` updated in place).
 
     ``excitation`` holds the excitation on the hydro DOFs at the chunk's times t_step0 ... (rows).
-    ``pto_now`` (3, n_pto) receives x, x_dot, f at the last state (for controllers); ``out`` records the run.
+    ``state.pto_now`` receives x, x_dot, f at the last state (for controllers); ``out`` records the run.
     Returns (status, global step of the failure).
     """
+    h, tol, max_iter, bounded, bound = settings
+    q, v, acc, acc_prev, z, u_now, buf, pos, pto_now = state
     nv = v.shape[0]
     n_steps = excitation.shape[0] - 1
     for k in range(n_steps):
@@ -194,9 +230,9 @@ def beeman_chunk(
         dv = h * v + h * h / 6.0 * (4.0 * acc - acc_prev)
         q1 = integrate_configuration(p, q, dv)
         if not np.all(np.isfinite(q1)):
-            return NOT_FINITE, n1
+            return LoopStatus.NOT_FINITE, n1
         if _out_of_bounds(q1, bounded, bound):
-            return OUT_OF_BOUNDS, n1
+            return LoopStatus.OUT_OF_BOUNDS, n1
         known = v + h / 6.0 * (5.0 * acc - acc_prev)
         vc = v + h / 2.0 * (3.0 * acc - acc_prev)
         a1, u1, x1, xd1, f1, _ = accelerations(p, q1, vc, base, r.newest, command)
@@ -237,21 +273,21 @@ def beeman_chunk(
                 delta = np.linalg.solve(jac, -residual)
                 vc = vc + delta
                 if not np.all(np.isfinite(vc)):
-                    return NOT_FINITE, n1
+                    return LoopStatus.NOT_FINITE, n1
                 if np.max(np.abs(delta)) <= tol * np.max(np.abs(vc)) + h / 3.0 * ACCELERATION_FLOOR:
                     converged = True
                     break
             if not converged:
-                return CORRECTOR_FAILED, n1
+                return LoopStatus.CORRECTOR_FAILED, n1
             q1 = integrate_configuration(p, q, 0.5 * h * (v + vc))
             if not np.all(np.isfinite(q1)):
-                return NOT_FINITE, n1
+                return LoopStatus.NOT_FINITE, n1
             if _out_of_bounds(q1, bounded, bound):
-                return OUT_OF_BOUNDS, n1
+                return LoopStatus.OUT_OF_BOUNDS, n1
             a1, u1, x1, xd1, f1, _mass = accelerations(p, q1, vc, base, r.newest, command)
             count += 1
         if not np.all(np.isfinite(vc)):
-            return NOT_FINITE, n1
+            return LoopStatus.NOT_FINITE, n1
         out.evaluations[0] += count
         out.evaluations[1] = max(out.evaluations[1], count)
         rad = hist + r.newest @ u1
@@ -265,7 +301,7 @@ def beeman_chunk(
         pto_now[1] = xd1
         pto_now[2] = f1
         _record(out, n1, p.pto_spring, q, v, acc, x1, xd1, f1, rad, excitation[k + 1])
-    return OK, step0 + n_steps
+    return LoopStatus.OK, step0 + n_steps
 
 
 @kernel
@@ -285,18 +321,14 @@ def rk4_chunk(
     r: RadiationArrays,
     excitation: np.ndarray,
     command: np.ndarray,
-    h: float,
     step0: int,
-    bounded: np.ndarray,
-    bound: float,
-    q: np.ndarray,
-    v: np.ndarray,
-    acc: np.ndarray,
-    z: np.ndarray,
-    pto_now: np.ndarray,
+    settings: StepSettings,
+    state: LoopState,
     out: Store,
 ) -> tuple[int, int]:
     """Advance ``(excitation.shape[0] - 1) // 2`` RK4 steps; ``excitation`` rows are at half steps from t_step0."""
+    h, bounded, bound = settings.h, settings.bounded, settings.angle_bound
+    q, v, acc, z, pto_now = state.q, state.v, state.acc, state.z, state.pto_now
     n_steps = (excitation.shape[0] - 1) // 2
     for k in range(n_steps):
         n1 = step0 + k + 1
@@ -315,9 +347,9 @@ def rk4_chunk(
         normalise_quaternions(p, q1)
         v1 = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
         if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(v1))):
-            return NOT_FINITE, n1  # q, v keep the last good state
+            return LoopStatus.NOT_FINITE, n1  # q, v keep the last good state
         if _out_of_bounds(q1, bounded, bound):
-            return OUT_OF_BOUNDS, n1
+            return LoopStatus.OUT_OF_BOUNDS, n1
         q[:] = q1
         v[:] = v1
         z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
@@ -329,4 +361,4 @@ def rk4_chunk(
         pto_now[1] = xd1
         pto_now[2] = f1
         _record(out, n1, p.pto_spring, q, v, acc, x1, xd1, f1, rad, e1)
-    return OK, step0 + n_steps
+    return LoopStatus.OK, step0 + n_steps

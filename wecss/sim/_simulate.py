@@ -1,290 +1,38 @@
-"""``simulate(scene)``: the nonlinear MFM time loop, returning an xarray Dataset.
-
-The loop runs in chunks of steps inside a kernel (numba-compiled when available); between chunks it reports
-progress. A controller without linear gains is called once per step (its force held over the step), which makes
-the chunks one step long.
-"""
+"""``simulate(scene)``: the one entry point for nonlinear, linear and frequency-domain runs, chosen by the scene's
+``solver.method``; every run returns the same Dataset layout."""
 
 from __future__ import annotations
 
-import sys
-import time as _time
-from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
 import xarray as xr
-from scipy.integrate import solve_ivp
 
-from ._compile import CompiledScene, compile_scene
-from ._integrators import CORRECTOR_FAILED, NOT_FINITE, OK, OUT_OF_BOUNDS, Store, beeman_chunk, rk4_chunk, state_rates
-from ._jit import JIT
-from ._kernels import accelerations
-from ._scene import Scene, SceneError
-
-CHUNK_STEPS: int = 2000
-"""Steps per kernel call (progress is reported between chunks)."""
-
-CALM_VELOCITY_LIMIT: float = 1e-6
-"""In calm water, a generalised velocity above this [m/s or rad/s] means energy grew without input."""
-
-
-class SimulationDiverged(RuntimeError):
-    """The simulation left the range where its results mean anything.
-
-    Attributes
-    ----------
-    time : float
-        Time of the failing step [s].
-    step : int
-    state : dict
-        ``q`` and ``v`` at the last good step.
-    """
-
-    def __init__(self, message: str, time: float, step: int, state: dict[str, np.ndarray]) -> None:
-        super().__init__(message)
-        self.time = time
-        self.step = step
-        self.state = state
-
-
-@dataclass
-class Record:
-    """Raw arrays of a run (saved steps), before they become a Dataset."""
-
-    time: np.ndarray
-    q: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    x: np.ndarray
-    xd: np.ndarray
-    f: np.ndarray
-    rad: np.ndarray
-    exc: np.ndarray
-    stats: np.ndarray
-    evaluations: np.ndarray
-    run_time: float
-
-
-class _Progress:
-    def __init__(self, total: int, enabled: bool) -> None:
-        self.total = total
-        self.enabled = enabled
-        self.start = _time.perf_counter()
-
-    def update(self, done: int) -> None:
-        if not self.enabled:
-            return
-        elapsed = _time.perf_counter() - self.start
-        rate = done / elapsed if elapsed > 0 else 0.0
-        width = 30
-        filled = int(width * done / self.total)
-        print(
-            f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} steps  {rate:,.0f} steps/s",
-            end="",
-            file=sys.stderr,
-            flush=True,
-        )
-        if done >= self.total:
-            print(file=sys.stderr)
-
-
-def _excitation(compiled: CompiledScene, times: np.ndarray) -> np.ndarray:
-    n_h = compiled.plant.hydro_index.size
-    if compiled.excitation is None:
-        return np.zeros((times.size, n_h))
-    return np.ascontiguousarray(compiled.excitation.force(times).T)
-
-
-def _diverged(status: int, step: int, compiled: CompiledScene, q: np.ndarray, v: np.ndarray) -> SimulationDiverged:
-    t = step * compiled.dt
-    reason = {
-        NOT_FINITE: "the state became non-finite",
-        OUT_OF_BOUNDS: f"a revolute joint angle passed the bound {compiled.scene.solver.angle_bound} rad",
-        CORRECTOR_FAILED: "the Beeman corrector (fixed point and Newton) did not converge",
-    }.get(status, f"status {status}")
-    names = compiled.device.model.coordinate_names
-    return SimulationDiverged(
-        f"simulation diverged at t = {t:.6g} s (step {step}): {reason}; last good q = "
-        + ", ".join(f"{n} {x:.4g}" for n, x in zip(names, q, strict=True))
-        + ". Try a smaller solver.dt or check the device and controller.",
-        t,
-        step,
-        {"q": q.copy(), "v": v.copy()},
-    )
-
-
-def stats_start(compiled: CompiledScene) -> int:
-    """First step of the statistics window (the last ``outputs.window`` share of the steps)."""
-    n = compiled.n_steps
-    return n - max(1, round(compiled.scene.outputs.window * n)) + 1
-
-
-def window_statistics(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Sums over the statistics window of every-step PTO strokes ``x``, rates ``xd`` and forces ``f``
-    (n_steps + 1, n_pto): absorbed power (the device spring left out, as conservative), stroke^2, count, stroke;
-    what the fixed-step kernels accumulate as they go."""
-    window = slice(stats_start(compiled), None)
-    power = -(f[window] + compiled.plant.pto_spring * x[window]) * xd[window]
-    xs = x[window]
-    return np.stack([power.sum(0), (xs**2).sum(0), np.full(x.shape[1], float(xs.shape[0])), xs.sum(0)])
-
-
-def _run_fixed(compiled: CompiledScene, progress: bool) -> Record:
-    from controllers import Measurement
-
-    scene = compiled.scene
-    p, r = compiled.plant, compiled.radiation
-    h, n = compiled.dt, compiled.n_steps
-    every = scene.outputs.every if not scene.outputs.statistics_only else 0
-    n_save = n // every + 1 if every else 0
-    nq, nv, n_pto, n_h = compiled.q0.size, p.twists.shape[0], p.pto_kind.size, p.hydro_index.size
-    out = Store(
-        every=every,
-        stats_start=stats_start(compiled),
-        q=np.zeros((n_save, nq)),
-        v=np.zeros((n_save, nv)),
-        a=np.zeros((n_save, nv)),
-        x=np.zeros((n_save, n_pto)),
-        xd=np.zeros((n_save, n_pto)),
-        f=np.zeros((n_save, n_pto)),
-        rad=np.zeros((n_save, n_h)),
-        exc=np.zeros((n_save, n_h)),
-        save_index=np.zeros(1, dtype=np.int64),
-        stats=np.zeros((4, n_pto)),  # sums over the window: absorbed power, stroke^2, count, stroke
-        evaluations=np.zeros(3, dtype=np.int64),
-    )
-    q = compiled.q0.copy()
-    v = np.zeros(nv)
-    command = np.zeros(n_pto)
-    exc0 = _excitation(compiled, np.zeros(1))[0]
-    a0, u0, x0, xd0, f0, _ = accelerations(p, q, v, exc0, r.newest, command)
-    acc, acc_prev = a0.copy(), a0.copy()
-    z = np.zeros(r.poles.size, dtype=complex)
-    u_now = u0.copy()
-    buf = np.zeros((n_h, 2 * r.depth))
-    buf[:, 0] = buf[:, r.depth] = u0
-    pos = np.zeros(1, dtype=np.int64)
-    pto_now = np.stack([x0, xd0, f0])
-    if n_save:
-        for row, value in (
-            (out.q, q),
-            (out.v, v),
-            (out.a, a0),
-            (out.x, x0),
-            (out.xd, xd0),
-            (out.f, f0),
-            (out.exc, exc0),
-        ):
-            row[0] = value
-        out.save_index[0] = 1
-    rk4 = scene.solver.method == "rk4"
-    # a controller without linear gains is called once per control period (chunk) and its force held over it
-    chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
-    if not compiled.linear_controller:
-        compiled.controller.setup(n_pto, h * scene.control_steps)  # a fresh start for controllers with memory
-    bar = _Progress(n, progress)
-    start = _time.perf_counter()
-    done = 0
-    calm = compiled.excitation is None
-    while done < n:
-        m = min(chunk, n - done)
-        if not compiled.linear_controller:
-            command = np.asarray(
-                compiled.controller.compute(done * h, Measurement(pto_now[0].copy(), pto_now[1].copy())), dtype=float
-            )
-            if command.shape != (n_pto,) or not np.all(np.isfinite(command)):
-                raise ValueError(f"controller returned {command!r}; expected {n_pto} finite forces")
-        if rk4:
-            times = (done + 0.5 * np.arange(2 * m + 1)) * h
-            status, at = rk4_chunk(
-                p, r, _excitation(compiled, times), command, h, done, compiled.bounded, scene.solver.angle_bound,
-                q, v, acc, z, pto_now, out,
-            )  # fmt: skip
-        else:
-            times = (done + np.arange(m + 1)) * h
-            status, at = beeman_chunk(
-                p, r, _excitation(compiled, times), command, h, done, scene.solver.corrector_tol,
-                scene.solver.max_corrector_iterations, compiled.bounded, scene.solver.angle_bound,
-                q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, out,
-            )  # fmt: skip
-        if status != OK:
-            raise _diverged(status, at, compiled, q, v)
-        if calm and np.max(np.abs(v)) > CALM_VELOCITY_LIMIT:
-            raise SimulationDiverged(
-                f"energy grew without input: in calm water the largest velocity reached {np.max(np.abs(v)):.3g} "
-                f"by t = {(done + m) * h:.6g} s (limit {CALM_VELOCITY_LIMIT:g}); the static equilibrium or the "
-                "integration is wrong",
-                (done + m) * h,
-                done + m,
-                {"q": q.copy(), "v": v.copy()},
-            )
-        done += m
-        bar.update(done)
-    run_time = _time.perf_counter() - start
-    saved = np.arange(n_save) * every * h
-    return Record(
-        saved, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc, out.stats, out.evaluations, run_time
-    )
-
-
-def _run_reference(compiled: CompiledScene, progress: bool) -> Record:
-    """scipy DOP853 on (q, v, Re z, Im z) at tight tolerance (state-space radiation; linear controllers only)."""
-    if not compiled.linear_controller:
-        raise SceneError("the reference solver needs a controller with linear gains (such as 'damping')")
-    scene = compiled.scene
-    p, r = compiled.plant, compiled.radiation
-    nq, nv, nz = compiled.q0.size, p.twists.shape[0], r.poles.size
-    command = np.zeros(p.pto_kind.size)
-
-    def parts(t: float, y: np.ndarray):
-        """The RK4 kernel's rates at (t, y): qd, a, zd, x, xd, f, rad; and the excitation."""
-        q, v = y[:nq], y[nq : nq + nv]
-        z = y[nq + nv : nq + nv + nz] + 1j * y[nq + nv + nz :]
-        exc = _excitation(compiled, np.array([t]))[0]
-        return (*state_rates(p, r, q, v, z, exc, command), exc)
-
-    def rates(t: float, y: np.ndarray) -> np.ndarray:
-        qd, a, zd, *_ = parts(t, y)
-        return np.concatenate([qd, a, zd.real, zd.imag])
-
-    every = scene.outputs.every if not scene.outputs.statistics_only else compiled.n_steps + 1
-    time = compiled.time  # every step, to the end, for the statistics; the saved ones are every ``every``-th
-    y0 = np.concatenate([compiled.q0, np.zeros(nv + 2 * nz)])
-    start = _time.perf_counter()
-    sol = solve_ivp(
-        rates, (0.0, time[-1]), y0, method="DOP853", t_eval=time, rtol=scene.solver.reference_rtol, atol=1e-12
-    )
-    if not sol.success:
-        raise SimulationDiverged(f"reference solver failed: {sol.message}", float(sol.t[-1]), -1, {"y": sol.y[:, -1]})
-    run_time = _time.perf_counter() - start
-    rows = [parts(t, y) for t, y in zip(sol.t, sol.y.T, strict=True)]
-    stack = {
-        k: np.array([row[i] for row in rows])
-        for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7))
-    }
-    stack["q"], stack["v"] = sol.y[:nq].T.copy(), sol.y[nq : nq + nv].T.copy()
-    stats = window_statistics(compiled, stack["x"], stack["xd"], stack["f"])
-    if progress:
-        print(f"reference solver: {sol.nfev} evaluations", file=sys.stderr)
-    saved = {k: v[::every] for k, v in stack.items()}
-    return Record(time[::every], **saved, stats=stats, evaluations=np.array([sol.nfev, 0, 0]), run_time=run_time)
+from ..compiled import CompiledScene, compile_scene
+from ..scene import Scene
+from ._frequency import run_frequency_domain
+from ._linear import simulate_linear
+from ._nonlinear import run_fixed_step, run_reference
+from ._result import build_result
 
 
 def simulate(scene: Scene | CompiledScene | str | Path, *, progress: bool = False) -> xr.Dataset:
-    """Run a scene with the nonlinear MFM equations.
+    """Run a scene.
+
+    ``solver.method`` chooses the run: "beeman", "rk4" or "reference" integrate the nonlinear MFM equations;
+    "linear" steps the linearised model exactly (``wecss.linear``); "frequency" evaluates the exact
+    frequency-domain steady state at the scene's time steps.
 
     Parameters
     ----------
     scene : Scene, CompiledScene, or path to a scene TOML file
     progress : bool
-        Print a progress bar on standard error.
+        Print a progress bar on standard error (nonlinear runs).
 
     Returns
     -------
     xarray.Dataset
-        Time series and statistics as the scene's outputs ask (see :func:`wecss.results.build_result`), with the
-        scene (JSON) and the run's settings, timings and notes in the attributes.
+        Time series and statistics as the scene's outputs ask (see ``wecss.sim.build_result``), with the scene
+        (JSON) and the run's solver, settings, timings and notes in the attributes.
 
     Raises
     ------
@@ -294,13 +42,16 @@ def simulate(scene: Scene | CompiledScene | str | Path, *, progress: bool = Fals
         If the state becomes non-finite, a hinge passes its bound, the corrector fails, or energy grows in calm
         water; the exception carries the time, step and state.
     """
-    from ..results import build_result
-
     if isinstance(scene, str | Path):
         scene = Scene.from_toml(scene)
     compiled = scene if isinstance(scene, CompiledScene) else compile_scene(scene)
-    if compiled.scene.solver.method == "reference":
-        record = _run_reference(compiled, progress)
+    method = compiled.scene.solver.method
+    if method == "linear":
+        return simulate_linear(compiled, hold=compiled.scene.solver.linear_hold)
+    if method == "frequency":
+        record = run_frequency_domain(compiled)
+    elif method == "reference":
+        record = run_reference(compiled, progress)
     else:
-        record = _run_fixed(compiled, progress)
-    return build_result(compiled, record, jit=JIT)
+        record = run_fixed_step(compiled, progress)
+    return build_result(compiled, record)

@@ -5,6 +5,7 @@ from ._elevation import DroppedComponents as DroppedComponents
 from ._elevation import Ramp as Ramp
 from ._elevation import WaveComponents as WaveComponents
 from ._elevation import drop_negligible as drop_negligible
+from ._elevation import evaluate as evaluate
 from ._elevation import from_elevation as from_elevation
 from ._elevation import irregular as irregular
 from ._elevation import regular as regular

@@ -9,7 +9,7 @@ states); in modal coordinates it costs n. The states split in two:
 - the rest, A[rest, rest] = V diag(poles) V^-1, diagonalisable (checked through the condition number of V).
   One mode of each conjugate pair is kept: x_rest = Re(shapes z), with the factor 2 of the pairs in ``shapes``.
 
-With the phi-functions of ``wecss.sim._phi`` and s = pole h, over a step h with inputs linear
+With the phi-functions of ``wecss.compiled.phi_functions`` and s = pole h, over a step h with inputs linear
 in time (first-order hold; zero-order hold keeps u_k):
 
     z_{k+1} = e^s z_k + h [(phi_1 - phi_2) u_k + phi_2 u_{k+1}] b                    (FOH)
@@ -24,8 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._jit import kernel
-from ._phi import phi_functions
+from ..compiled import kernel, phi_functions
 
 CONDITION_LIMIT: float = 1e8
 """Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""

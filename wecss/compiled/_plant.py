@@ -7,12 +7,19 @@ kernels in ``_kernels`` read only these arrays.
 
 from __future__ import annotations
 
+from enum import IntEnum
 from typing import NamedTuple
 
 import numpy as np
 
-from ..multibody import ActuatorPTO, HydroCoupling, JointPTO, Multibody, integrate, kinematics
-from ..multibody._pto import PTO
+from ..multibody import PTO, ActuatorPTO, HydroCoupling, JointPTO, Multibody, integrate, kinematics
+
+
+class PtoKind(IntEnum):
+    """The ``pto_kind`` of a :class:`Plant`'s PTO (stored as int; numba compares the members)."""
+
+    JOINT = 0
+    ACTUATOR = 1
 
 
 class Plant(NamedTuple):
@@ -33,7 +40,7 @@ class Plant(NamedTuple):
         hydrostatic_stiffness : (n_h, n_h) about the centres of mass [N/m, N m/rad, ...]
         static_force : (6n,) gravity plus equilibrium buoyancy, world axes [N]
     PTOs (n_pto)
-        pto_kind : 0 joint, 1 actuator; pto_coordinate, pto_velocity : joint coordinate / velocity index (joint PTOs)
+        pto_kind : a :class:`PtoKind`; pto_coordinate, pto_velocity : joint coordinate / velocity index (joint PTOs)
         pto_body_a, pto_body_b : body index or -1 for the ground (actuators)
         pto_point_a, pto_point_b : (n_pto, 3) end point relative to the body's centre of mass in body axes, or the
         world point for the ground [m]
@@ -115,7 +122,7 @@ def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
 def _pto_arrays(model: Multibody, ptos: tuple[PTO, ...]) -> dict[str, np.ndarray]:
     n = len(ptos)
     out = {
-        "pto_kind": np.zeros(n, dtype=np.int64),
+        "pto_kind": np.full(n, PtoKind.JOINT, dtype=np.int64),
         "pto_coordinate": np.full(n, -1, dtype=np.int64),
         "pto_velocity": np.full(n, -1, dtype=np.int64),
         "pto_body_a": np.full(n, -1, dtype=np.int64),
@@ -139,7 +146,7 @@ def _pto_arrays(model: Multibody, ptos: tuple[PTO, ...]) -> dict[str, np.ndarray
             out["pto_coordinate"][k] = model.coordinate_names.index(label)
             out["pto_velocity"][k] = model.velocity_names.index(label)
         elif isinstance(pto, ActuatorPTO):
-            out["pto_kind"][k] = 1
+            out["pto_kind"][k] = PtoKind.ACTUATOR
             for end, body, point in (("a", pto.body_a, pto.point_a), ("b", pto.body_b, pto.point_b)):
                 if body is None:
                     out[f"pto_point_{end}"][k] = point

@@ -33,8 +33,11 @@ from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
+from ._parameters import Parameters
+
 SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm")
-SOLVER_METHODS = ("beeman", "rk4", "reference")
+SOLVER_METHODS = ("beeman", "rk4", "reference", "linear", "frequency")
+LINEAR_HOLDS = ("foh", "zoh")
 RADIATION_METHODS = ("convolution", "state_space", "none")
 OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses")
 DEFAULT_OUTPUTS = ("motion", "pto", "excitation", "elevation", "poses")
@@ -210,12 +213,15 @@ class SeaState:
 class ControllerChoice:
     """A controller registered under the ``wecss.controllers`` entry points, with its parameters.
 
-    Without parameters, ``damping`` takes the device's PTO damping (6 N m s/rad for the M4 devices).
+    The controller owns the gains it applies; without a ``damping`` parameter, ``damping`` takes the device's
+    default PTO damping (6 N m s/rad for the M4 devices) from the context it is set up with.
 
     Attributes
     ----------
     name : str
     parameters : dict
+        Keyword arguments of the controller, frozen (:class:`Parameters`: read-only, lists as tuples) so that the
+        scene is hashable.
     dt : float or str or None
         Control period [s] or relative ("Tp/20"): the controller is called every ``dt`` and its force held in
         between. A whole number of solver steps; None (default) calls it every step. Controllers with linear
@@ -228,6 +234,7 @@ class ControllerChoice:
 
     def __post_init__(self) -> None:
         _types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
+        object.__setattr__(self, "parameters", Parameters(self.parameters))
 
 
 @dataclass(frozen=True)
@@ -236,9 +243,12 @@ class Solver:
 
     Attributes
     ----------
-    method : {"beeman", "rk4", "reference"}
-        Beeman predictor-corrector (paper Eq. 52), classic RK4 (state-space radiation only) or scipy's DOP853 at
-        tight tolerance (verification; state-space radiation only).
+    method : {"beeman", "rk4", "reference", "linear", "frequency"}
+        The nonlinear MFM equations by the Beeman predictor-corrector (paper Eq. 52), classic RK4 (state-space
+        radiation only) or scipy's DOP853 at tight tolerance (verification; state-space radiation only); or the
+        equations linearised about the static equilibrium: "linear", the linear state-space model stepped exactly
+        (state-space radiation only; ``wecss.linear``), or "frequency", the exact frequency-domain steady state
+        from the database's A(omega) and B(omega) (no ramp, no transient; controllers with linear gains only).
     dt : float or str
         Step [s] or relative ("Tp/200").
     corrector_tol : float
@@ -248,6 +258,9 @@ class Solver:
         A revolute joint angle beyond this [rad] stops the run (SimulationDiverged).
     reference_rtol : float
         Relative tolerance of the reference solver.
+    hold : {"foh", "zoh"} or None
+        "linear" only: the excitation taken linear in time over a step (first-order hold, second order; the
+        default) or held (zero-order hold, first order).
     """
 
     method: str = "beeman"
@@ -256,9 +269,19 @@ class Solver:
     max_corrector_iterations: int = 30
     angle_bound: float = 1.5
     reference_rtol: float = 1e-10
+    hold: str | None = None
 
     def __post_init__(self) -> None:
         _choice("solver.method", self.method, SOLVER_METHODS)
+        if self.hold is not None:
+            _choice("solver.hold", self.hold, LINEAR_HOLDS)
+            if self.method != "linear":
+                raise SceneError(f"solver.hold applies to solver.method 'linear' only; got method {self.method!r}")
+
+    @property
+    def linear_hold(self) -> str:
+        """The hold of linear runs ("foh" unless ``hold`` says otherwise)."""
+        return self.hold or "foh"
         if not 0 < self.corrector_tol < 1:
             raise SceneError(f"solver.corrector_tol must lie in (0, 1); got {self.corrector_tol!r}")
         if not (isinstance(self.max_corrector_iterations, int) and self.max_corrector_iterations >= 1):
@@ -277,8 +300,9 @@ class Radiation:
     ----------
     method : {"convolution", "state_space", "none"}
     coupling_threshold : float
-        Convolution: kernel entries whose peak is below this share of sqrt(peak_ii peak_jj) are dropped (reported)
-        [-]. Dropping by the largest diagonal peak instead would drop every pitch coupling (its units are smaller).
+        Both methods: kernel entries whose peak is below this share of sqrt(peak_ii peak_jj) are dropped from the
+        convolution and from the state-space fit's targets (reported) [-]; the rule is
+        ``wecss.radiation.significant_couplings``.
     fit : {"era-mimo", "prony", "era"}
         State space: the fit method (``wecss.radiation.FitSettings``); fits are cached on disk.
     band : float
@@ -380,6 +404,11 @@ class Scene:
                 f"solver.method {self.solver.method!r} needs radiation.method 'state_space' or 'none': with a "
                 "convolution the memory at the intermediate stages is not defined (it would drop the scheme to first "
                 "order); use 'beeman' for convolutions"
+            )
+        if self.solver.method == "linear" and self.radiation.method != "state_space":
+            raise SceneError(
+                "solver.method 'linear' needs radiation.method 'state_space' (the linear model carries the radiation "
+                f"memory as states); got {self.radiation.method!r}"
             )
 
     @property

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wecss.sim._modal_recursion import BLOCK_STEPS, ModalForm, NotDiagonalisable, outputs, run
+from wecss.linear._modal_recursion import BLOCK_STEPS, ModalForm, NotDiagonalisable, outputs, run
 
 
 def test_free_integrator_follows_the_closed_form():
@@ -37,7 +37,7 @@ def test_modal_run_of_m4_134_equals_the_matrix_exponential_step(hold):
     """The linear model of m4-134 (free surge, 414 states): the modal run driven by generalised forces against the
     dense step x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1} from the exponential of the augmented system, with the model's
     own inputs (hydro forces and PTO forces), from a non-zero state, across block boundaries."""
-    from tests.sim.test_linear import _compiled
+    from tests.linear.test_model import _compiled
     from wecss.sim import linearize
 
     model = linearize(_compiled("m4-134"))
@@ -73,7 +73,7 @@ def test_phi_functions_equal_their_integrals(s):
 
     from scipy.integrate import quad
 
-    from wecss.sim._phi import phi_functions
+    from wecss.compiled import phi_functions
 
     values = phi_functions(np.array([s]))
     for j, value in zip((1, 2, 3), values, strict=True):

@@ -12,27 +12,30 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 from .. import waves as wv
+from ..control import ControlContext, Controller
+from ..control import available as available_controllers
+from ..control import create as create_controller
 from ..devices import Device
 from ..devices import available as available_devices
 from ..devices import load as load_device
 from ..hydro import HydroData
 from ..multibody import HydroCoupling, StaticModel
-from ..radiation import FitSettings
+from ..radiation import FitSettings, RadiationFit
+from ..scene import Scene, SceneError
 from ._plant import Plant, build_plant
 from ._radiation import (
     RadiationArrays,
+    RadiationKind,
     RadiationSummary,
     added_mass_correction,
     from_impulse_response,
     from_state_space,
     no_radiation,
 )
-from ._scene import Scene, SceneError
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,13 +51,18 @@ class CompiledScene:
     plant : Plant
     radiation : RadiationArrays
     radiation_summary : RadiationSummary
+    radiation_fit : RadiationFit or None
+        The state-space fit the radiation arrays were made from (None for other methods); the linear model uses
+        the same fit.
     waves : WaveComponents or None
         None in calm water.
     spectrum : Spectrum or None
         The sea state's spectrum (None for regular waves, measured elevations and calm water).
     excitation : ExcitationModel or None
-    controller : object
-        The controller (``controllers.Controller``).
+    controller : Controller
+        The controller, set up with ``control_context``.
+    control_context : ControlContext
+        What the controller is told at every (re)start of a run.
     linear_controller : bool
         The controller's linear gains act inside the equations of motion (else its force is held over each step).
     statics : StaticModel
@@ -78,10 +86,12 @@ class CompiledScene:
     plant: Plant
     radiation: RadiationArrays
     radiation_summary: RadiationSummary
+    radiation_fit: RadiationFit | None
     waves: wv.WaveComponents | None
     spectrum: wv.Spectrum | None
     excitation: wv.ExcitationModel | None
-    controller: Any
+    controller: Controller
+    control_context: ControlContext
     linear_controller: bool
     statics: StaticModel
     q0: np.ndarray
@@ -196,46 +206,57 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
     return waves, spectrum
 
 
-def make_controller(scene: Scene, device: Device, dt: float) -> tuple[Any, bool]:
-    """The scene's controller, set up for the device's PTOs; True when it offers linear gains."""
-    from controllers import available, create
+def make_controller(scene: Scene, device: Device, dt: float) -> tuple[Controller, ControlContext, bool]:
+    """The scene's controller, set up for the device's PTOs, its context, and True when it offers linear gains.
 
+    The controller owns the PTO gains; the device's PTO damping reaches it only as the context's default.
+    """
     choice = scene.controller
-    if choice.name not in available():
-        raise SceneError(f"controller.name: unknown controller {choice.name!r}; available: {', '.join(available())}")
-    parameters = dict(choice.parameters)
-    if choice.name == "damping" and not parameters:
-        parameters = {"damping": [p.damping for p in device.ptos]}
+    known = available_controllers()
+    if choice.name not in known:
+        raise SceneError(f"controller.name: unknown controller {choice.name!r}; available: {', '.join(known)}")
+    context = ControlContext(
+        pto_names=tuple(p.name for p in device.ptos),
+        control_period=dt * scene.control_steps,
+        default_damping=tuple(float(p.damping) for p in device.ptos),
+    )
     try:
-        controller = create(choice.name, **parameters)
-        controller.setup(len(device.ptos), dt * scene.control_steps)
+        controller = create_controller(choice.name, **choice.parameters)
+        controller.setup(context)
     except (TypeError, ValueError) as err:
-        raise SceneError(f"controller {choice.name!r} with parameters {parameters}: {err}") from None
-    return controller, callable(getattr(controller, "linear_gains", None))
+        raise SceneError(f"controller {choice.name!r} with parameters {dict(choice.parameters)}: {err}") from None
+    return controller, context, callable(getattr(controller, "linear_gains", None))
 
 
-def make_radiation(scene: Scene, coupling: HydroCoupling, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
-    """The radiation memory arrays of the scene's method."""
+def make_radiation(
+    scene: Scene, coupling: HydroCoupling, dt: float
+) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
+    """The radiation memory arrays of the scene's method, and the state-space fit they were made from."""
     from ..radiation import fit_radiation, impulse_response
 
     method = scene.radiation.method
     n_h = len(coupling.hydro.dofs)
+    if scene.solver.method == "frequency":  # the frequency domain uses A(omega), B(omega): no memory model
+        return no_radiation(n_h)[0], RadiationSummary("frequency"), None
     if method == "none":
-        return no_radiation(n_h)
+        return (*no_radiation(n_h), None)
     if method == "convolution":
-        return from_impulse_response(
+        arrays, summary = from_impulse_response(
             impulse_response(coupling.hydro), dt, coupling_threshold=scene.radiation.coupling_threshold
         )
+        return arrays, summary, None
     settings, band = fit_request(scene, coupling.hydro)
     fit = fit_radiation(coupling.hydro, settings, cache=True, band=band)
-    return from_state_space(fit.model, dt)
+    return (*from_state_space(fit.model, dt), fit)
 
 
 def fit_request(scene: Scene, hydro: HydroData) -> tuple[FitSettings, tuple[float, float] | None]:
-    """The fit settings and band (rad/s) a scene's state-space radiation asks for."""
+    """The fit settings (with the scene's coupling threshold) and band [rad/s] a scene's state-space radiation
+    asks for."""
     top = float(hydro.omega[-1])
     band = (scene.radiation.band * top, top) if scene.radiation.band > 0 else None
-    return FitSettings(method=scene.radiation.fit), band  # type: ignore[arg-type]
+    settings = FitSettings(method=scene.radiation.fit, coupling_threshold=scene.radiation.coupling_threshold)  # type: ignore[arg-type]
+    return settings, band
 
 
 def _added_mass_correction(
@@ -279,11 +300,20 @@ def compile_scene(scene: Scene) -> CompiledScene:
                 "wave components outside the database's frequencies left out: "
                 f"{excitation.outside_share:.2e} of the variance"
             )
-    controller, linear = make_controller(scene, device, dt)
-    gains = controller.linear_gains() if linear else (None, None)
-    radiation, summary = make_radiation(scene, coupling, dt)
+    controller, context, linear = make_controller(scene, device, dt)
+    if scene.solver.method == "frequency" and not linear:
+        raise SceneError(
+            f"solver.method 'frequency' needs a controller with linear gains (such as 'damping'); "
+            f"{scene.controller.name!r} has none: use 'linear' or a time-domain solver"
+        )
+    gains = controller.linear_gains() if linear else (None, None)  # type: ignore[attr-defined]
+    radiation, summary, fit = make_radiation(scene, coupling, dt)
+    if scene.solver.method == "frequency":
+        notes.append(
+            "radiation memory not used: the frequency-domain solution takes A(omega) and B(omega) from the database"
+        )
     correction = None
-    if waves is not None and radiation.kind != 0 and scene.radiation.consistent_added_mass:
+    if waves is not None and radiation.kind != RadiationKind.NONE and scene.radiation.consistent_added_mass:
         correction = _added_mass_correction(hydro, radiation, dt, waves)
         if correction is not None:
             a_inf = np.abs(np.diag(hydro.dataset.added_mass_inf.values))
@@ -325,10 +355,12 @@ def compile_scene(scene: Scene) -> CompiledScene:
         plant=plant,
         radiation=radiation,
         radiation_summary=summary,
+        radiation_fit=fit,
         waves=waves,
         spectrum=spectrum,
         excitation=excitation,
         controller=controller,
+        control_context=context,
         linear_controller=linear,
         statics=statics,
         q0=q0,

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from tests.multibody.chains import mixed_chain
+from wecss.compiled import _kernels as K
+from wecss.compiled import build_plant
 from wecss.devices import load
 from wecss.multibody import ActuatorPTO, Dynamics, JointPTO, gravity_force, integrate, kinematics
 from wecss.multibody._hydrostatics import to_body_moments
-from wecss.sim import _kernels as K
-from wecss.sim._plant import build_plant
 
 
 def _reference_accelerations(model, coupling, ptos, g, q, v, hydro_force, command, damping):

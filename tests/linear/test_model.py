@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import held, scene
+from wecss.compiled import accelerations, integrate_configuration
+from wecss.linear import steady_state
 from wecss.results import mean_power
 from wecss.sim import compile_scene, linearize, simulate_linear
-from wecss.sim._frequency import steady_state
-from wecss.sim._kernels import accelerations, integrate_configuration
 
 
 def _rms(x: np.ndarray) -> np.ndarray:
@@ -93,14 +93,13 @@ def test_linear_run_matches_the_frequency_domain_and_first_order_hold_is_second_
 def test_linear_model_response_matches_the_frequency_domain_in_the_fitted_band(device):
     """PTO stroke per unit wave amplitude from C (i omega - A)^-1 B against the solution built from A(omega), B(omega)
     directly: within 1 % of its peak from 1 rad/s to the start of the fit's roll-off (0.6 omega_max)."""
-    from wecss.sim._frequency import frequency_response
     from wecss.waves import excitation_coefficients
 
     compiled = _compiled(device)
     model = linearize(compiled)
     omega = compiled.hydro.omega
     omega = omega[(omega >= 1.0) & (omega <= compiled.scene.radiation.band * omega[-1])]
-    h_data, _ = frequency_response(compiled, omega)
+    h_data = model.frequency_response(omega)
     a, b = np.asarray(model.system.A), np.asarray(model.system.B)
     n_h, nv = model.hydro_jacobian.shape
     h_model = np.array([np.linalg.solve(1j * w * np.eye(a.shape[0]) - a, b[:, :n_h])[:nv] for w in omega])
@@ -132,9 +131,9 @@ def test_linear_model_round_trips_through_netcdf(tmp_path):
 
 def test_modal_table_periods_are_roots_of_the_undamped_impedance():
     """At every finite natural period, K - omega^2 (M* + Bw'(A(omega) - A_inf) Bw) is singular."""
+    from wecss.compiled import interpolate_matrices
+    from wecss.linear import modal_table
     from wecss.sim import Scene
-    from wecss.sim._modes import modal_table
-    from wecss.sim._radiation import interpolate_matrices
 
     calm = {"kind": "calm", "period": None, "duration": 10.0, "ramp": 0.0}
     sc = Scene.from_dict(

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._jit import kernel
-from ._plant import Plant
+from ._plant import Plant, PtoKind
 
 _SMALL = 1e-8
 
@@ -262,7 +262,7 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
     x = np.zeros(n_pto)
     gmat = np.zeros((n_pto, nv))
     for k in range(n_pto):
-        if p.pto_kind[k] == 0:
+        if p.pto_kind[k] == PtoKind.JOINT:
             x[k] = q[p.pto_coordinate[k]]
             gmat[k, p.pto_velocity[k]] = 1.0
         else:

@@ -14,9 +14,8 @@ import numpy as np
 import xarray as xr
 from scipy.linalg import eigh
 
-from ._compile import CompiledScene
-from ._frequency import linearise
-from ._radiation import interpolate_matrices
+from ..compiled import CompiledScene
+from ._model import linearize
 
 
 def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
@@ -31,24 +30,19 @@ def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
     ValueError
         If the controller has no linear gains.
     """
-    lin = linearise(compiled)
-    hydro = compiled.hydro
-    ds = hydro.dataset
+    lin = linearize(compiled)
+    if not lin.controller_folded:
+        raise ValueError("the modal table needs a controller with linear gains (such as 'damping')")
     bw = lin.hydro_jacobian
-    a_inf = ds.added_mass_inf.values
-    data_omega = hydro.omega
+    data_omega = lin.hydro.omega
 
     def mass(omega: float) -> np.ndarray:
-        added = interpolate_matrices(data_omega, ds.added_mass.values, np.array([omega]))[0] - a_inf
-        return lin.mass + bw.T @ added @ bw
+        return lin.database_mass + bw.T @ lin.hydro.at(np.array([omega]))[0][0] @ bw
 
     def damping(omega: float) -> np.ndarray:
-        return (
-            lin.damping
-            + bw.T @ interpolate_matrices(data_omega, ds.radiation_damping.values, np.array([omega]))[0] @ bw
-        )
+        return lin.damping + bw.T @ lin.hydro.at(np.array([omega]))[1][0] @ bw
 
-    values, vectors = eigh(lin.stiffness, lin.mass)
+    values, vectors = eigh(lin.stiffness, lin.database_mass)
     nv = values.size
     tiny = 1e-9 * max(1.0, float(np.max(np.abs(values))))
     periods = np.full(nv, np.inf)

@@ -9,20 +9,20 @@ F = -Re(c z). Over a step the velocity is taken linear in time (first-order hold
 integrates exactly: z1 = e^{lambda h} z0 + h (phi1 - phi2) b u0 + h phi2 b u1, phi1 = (e - 1)/(lambda h),
 phi2 = (e - 1 - lambda h)/(lambda h)^2. Unconditionally stable and second order, like the Beeman scheme.
 
-Convolution, by the trapezoidal rule on the simulation step, entry by entry: each kernel entry whose peak is at
-least ``coupling_threshold`` of sqrt(peak_ii peak_jj) keeps its own memory (MEMORY_FACTOR times its 1 %
-truncation time); the others are dropped (reported).
+Convolution, by the trapezoidal rule on the simulation step, entry by entry: each kernel entry that
+``wecss.radiation.significant_couplings`` keeps has its own memory (MEMORY_FACTOR times its 1 % truncation
+time); the others are dropped (reported).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import IntEnum
 from typing import NamedTuple
 
 import numpy as np
 
-from ..radiation import ImpulseResponse, RadiationStateSpace
-from ..radiation._convolution import MEMORY_FACTOR
+from ..radiation import MEMORY_FACTOR, ImpulseResponse, RadiationStateSpace, significant_couplings
 from ._phi import phi_functions
 
 FINE_MEMORY: float = 3.0
@@ -34,8 +34,16 @@ COARSE_STEP: float = 0.06
 fifth of the cost."""
 
 
+class RadiationKind(IntEnum):
+    """How the memory force is computed (the ``kind`` of :class:`RadiationArrays`; numba compares the members)."""
+
+    NONE = 0
+    STATE_SPACE = 1
+    CONVOLUTION = 2
+
+
 class RadiationArrays(NamedTuple):
-    """Arrays of the radiation memory read by the integrators (``kind``: 0 none, 1 state space, 2 convolution).
+    """Arrays of the radiation memory read by the integrators (``kind``: a :class:`RadiationKind`, stored as int).
 
     State space: ``poles`` (nz,), ``input`` (nz, n_h), ``output`` (n_h, nz) complex (F = -Re(output z)),
     ``decay`` e^{lambda h}, ``hold0``, ``hold1`` (nz, n_h) the first-order-hold input matrices.
@@ -84,6 +92,8 @@ class RadiationSummary:
     def __str__(self) -> str:
         if self.method == "none":
             return "no radiation memory"
+        if self.method == "frequency":
+            return "frequency domain: A(omega) and B(omega) of the database (no memory model)"
         if self.method == "state_space":
             return f"state space, {self.states} complex modal states, fastest pole at {self.max_pole:.4g} rad/s"
         dropped = f"; dropped {len(self.dropped_entries)} couplings below the threshold" if self.dropped_entries else ""
@@ -93,10 +103,10 @@ class RadiationSummary:
         )
 
 
-def _empty(n_h: int, kind: int, newest: np.ndarray) -> dict:
+def _empty(n_h: int, kind: RadiationKind, newest: np.ndarray) -> dict:
     c0 = np.zeros((0, n_h), dtype=complex)
     return {
-        "kind": kind,
+        "kind": int(kind),
         "poles": np.zeros(0, dtype=complex),
         "input": c0,
         "output": np.zeros((n_h, 0), dtype=complex),
@@ -119,7 +129,7 @@ def _empty(n_h: int, kind: int, newest: np.ndarray) -> dict:
 
 def no_radiation(n_h: int) -> tuple[RadiationArrays, RadiationSummary]:
     """No memory force (for tests of the mechanics alone)."""
-    return RadiationArrays(**_empty(n_h, 0, np.zeros((n_h, n_h)))), RadiationSummary("none")
+    return RadiationArrays(**_empty(n_h, RadiationKind.NONE, np.zeros((n_h, n_h)))), RadiationSummary("none")
 
 
 def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
@@ -130,7 +140,7 @@ def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationAr
     phi1, phi2, _ = phi_functions(lam * dt)
     hold1 = (dt * phi2)[:, None] * inp
     hold0 = (dt * (phi1 - phi2))[:, None] * inp
-    arrays = _empty(n_h, 1, -np.real(output @ hold1))
+    arrays = _empty(n_h, RadiationKind.STATE_SPACE, -np.real(output @ hold1))
     arrays.update(
         poles=lam.astype(complex),
         input=np.ascontiguousarray(inp, dtype=complex),
@@ -157,8 +167,7 @@ def from_impulse_response(
     Parameters
     ----------
     coupling_threshold : float
-        Entries whose kernel peak is below this share of sqrt(peak_ii peak_jj) (the geometric mean of the two
-        diagonal peaks, which makes it independent of units) are dropped [-].
+        Entries that :func:`wecss.radiation.significant_couplings` drops at this threshold are left out [-].
     memory_factor : float
         Memory of each entry as a multiple of its 1 % truncation time (at most the kernel's length).
     fine_memory : float
@@ -168,14 +177,8 @@ def from_impulse_response(
     """
     if not dt > 0:
         raise ValueError(f"dt must be positive [s]; got {dt!r}")
-    if not 0 <= coupling_threshold < 1:
-        raise ValueError(
-            f"coupling_threshold is a share of the largest diagonal peak in [0, 1); got {coupling_threshold!r}"
-        )
     n_h = len(irf.dofs)
-    peak = np.max(np.abs(irf.kernel), axis=0)
-    diagonal = np.diag(peak)
-    kept = peak >= coupling_threshold * np.sqrt(np.outer(diagonal, diagonal))
+    kept = significant_couplings(np.max(np.abs(irf.kernel), axis=0), coupling_threshold)
     t_max = float(irf.time[-1])
     stride = max(1, round(coarse_step / dt))
     n_fine = max(1, int(np.ceil(fine_memory / dt / stride)) * stride)  # a multiple of the stride
@@ -224,7 +227,7 @@ def from_impulse_response(
         coarse_values.append(coarse.reshape(-1))
         f0 += fine.size
         c0 += coarse.size
-    arrays = _empty(n_h, 2, newest)
+    arrays = _empty(n_h, RadiationKind.CONVOLUTION, newest)
     ints = {k: np.asarray(v, dtype=np.int64) for k, v in (
         ("row", rows), ("col", col_ptr), ("fine_start", fine_start), ("fine_length", fine_length),
         ("coarse_start", coarse_start), ("coarse_length", coarse_length),
@@ -248,14 +251,14 @@ def from_impulse_response(
     return RadiationArrays(**arrays), summary
 
 
-def frequency_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np.ndarray:
+def memory_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np.ndarray:
     """K_hat(omega) (n_omega, n_h, n_h) of the memory model as the simulator applies it, so that the memory force
     of a velocity Re[u e^{i omega t}] is -Re[K_hat u e^{i omega t}] (discrete sums for the convolution, the
     continuous response for the state space)."""
     omega = np.atleast_1d(np.asarray(omega, dtype=float))
     n_h = arrays.newest.shape[0]
     out = np.zeros((omega.size, n_h, n_h), dtype=complex)
-    if arrays.kind == 1:
+    if arrays.kind == RadiationKind.STATE_SPACE:
         resolvent = 1.0 / (1j * omega[:, None] - arrays.poles[None, :])
         full = np.einsum("ik,wk,kj->wij", arrays.output, resolvent, arrays.input)
         # the kept states stand for conjugate pairs: Re(c z) = (c z + conj(c z)) / 2 per pair, exactly the real part
@@ -264,7 +267,7 @@ def frequency_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) ->
             "ik,wk,kj->wij", arrays.output, 1.0 / (-1j * omega[:, None] - arrays.poles[None, :]), arrays.input
         )
         return 0.5 * (full + np.conj(mirror))
-    if arrays.kind == 2:
+    if arrays.kind == RadiationKind.CONVOLUTION:
         out -= arrays.newest[None]
         for c in range(n_h):
             members = arrays.row[arrays.col[c] : arrays.col[c + 1]]
@@ -300,7 +303,7 @@ def added_mass_correction(
     Kramers-Kronig relation of the damping (Ogilvie 1964), which with a finite frequency range and a fitted tail
     is not exactly the database's. Without the correction the time-domain added mass is off by that constant.
     """
-    response = frequency_response(arrays, omega, dt)
+    response = memory_response(arrays, omega, dt)
     flat = added_mass.reshape(omega_data.size, -1)
     data = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], -1).reshape(
         response.shape

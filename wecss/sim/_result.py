@@ -1,4 +1,4 @@
-"""The result Dataset of a simulation (DESIGN.md "Results").
+"""The result Dataset of a run (DESIGN.md "Results"), built from the raw :class:`Record` every runner returns.
 
 Dimensions: ``time``; ``dof_linear`` / ``dof_angular`` (generalised coordinates, translations and rotations kept
 apart); ``rotary_pto`` / ``linear_pto`` and ``pto`` (all PTOs, for power); ``hydro_dof_linear`` /
@@ -9,21 +9,59 @@ Only the groups the scene's outputs ask for are present; statistics over the fin
 from __future__ import annotations
 
 import json
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
 from .. import __version__
 from ..attributes import apply_attrs
+from ..compiled import JIT, CompiledScene, hydro_velocity, poses
 from ..hydro import split_dof
 from ..multibody import JointPTO, difference
-from ..sim._kernels import hydro_velocity, poses
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 
-if TYPE_CHECKING:
-    from ..sim._compile import CompiledScene
-    from ..sim._simulate import Record
+
+@dataclass
+class Record:
+    """Raw arrays of a run at its saved steps, before they become a Dataset.
+
+    ``time`` (n_save,) [s]; ``q`` configurations, ``v`` generalised velocities, ``a`` accelerations; PTO strokes
+    ``x``, rates ``xd`` and forces ``f`` (n_save, n_pto); memory forces ``rad`` and excitation ``exc`` on the hydro
+    DOFs; ``stats`` the sums over the statistics window (see :func:`window_statistics`); ``run_time`` [s] of the
+    run itself. ``solver`` describes the run in the result's attributes: at least ``solver`` (its name), and
+    whatever else the run measured (evaluations per step, its radiation model, ...).
+    """
+
+    time: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    x: np.ndarray
+    xd: np.ndarray
+    f: np.ndarray
+    rad: np.ndarray
+    exc: np.ndarray
+    stats: np.ndarray
+    run_time: float
+    solver: dict[str, Any] = field(default_factory=dict)
+
+
+def stats_start(compiled: CompiledScene) -> int:
+    """First step of the statistics window (the last ``outputs.window`` share of the steps)."""
+    n = compiled.n_steps
+    return n - max(1, round(compiled.scene.outputs.window * n)) + 1
+
+
+def window_statistics(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Sums over the statistics window of every-step PTO strokes ``x``, rates ``xd`` and forces ``f``
+    (n_steps + 1, n_pto): absorbed power (the device spring left out, as conservative), stroke^2, count, stroke;
+    what the fixed-step kernels accumulate as they go."""
+    window = slice(stats_start(compiled), None)
+    power = -(f[window] + compiled.plant.pto_spring * x[window]) * xd[window]
+    xs = x[window]
+    return np.stack([power.sum(0), (xs**2).sum(0), np.full(x.shape[1], float(xs.shape[0])), xs.sum(0)])
 
 
 def dof_kinds(compiled: CompiledScene) -> tuple[list[str], np.ndarray]:
@@ -113,7 +151,7 @@ def _notes(compiled: CompiledScene) -> list[str]:
     return notes
 
 
-def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Dataset:
+def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     """The Dataset of a run from its raw record (see the module docstring)."""
     scene = compiled.scene
     groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
@@ -196,7 +234,6 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
         if any(dim in v[0] for v in data.values()):
             coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
     n_steps = compiled.n_steps
-    evaluations = record.evaluations
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {compiled.device.name}",
         "wecss_version": __version__,
@@ -211,7 +248,7 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
         "controller": scene.controller.name,
         "controller_parameters": json.dumps(scene.controller.parameters),
         "controller_linear_gains_in_equations": int(compiled.linear_controller),
-        "numba": int(jit),
+        "numba": int(JIT),
         "run_time_s": record.run_time,
         "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
         "seed": scene.sea.seed,
@@ -219,12 +256,7 @@ def build_result(compiled: CompiledScene, record: Record, *, jit: bool) -> xr.Da
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
     }
-    if scene.solver.method == "beeman":
-        attrs["evaluations_per_step"] = float(evaluations[0]) / max(1, n_steps)
-        attrs["max_evaluations_per_step"] = int(evaluations[1])
-        attrs["newton_corrector_steps"] = int(evaluations[2])
-    elif scene.solver.method == "reference":
-        attrs["function_evaluations"] = int(evaluations[0])
+    attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)
     attrs.update(sea_state_attrs(compiled))
     ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return apply_attrs(ds)

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import scene
+from wecss.scene import resolve_time
 from wecss.sim import Scene, SceneError, compile_scene, default_scene_path, simulate
-from wecss.sim._scene import resolve_time
 
 
 def test_default_scene_is_the_issue_default():
@@ -109,3 +109,38 @@ def test_missing_scene_file_and_malformed_toml(tmp_path):
     bad.write_text("[sea\nkind = 1")
     with pytest.raises(SceneError, match="not valid TOML"):
         Scene.from_toml(bad)
+
+
+def test_scenes_are_hashable_and_equal_scenes_hash_equal():
+    """Frozen scenes can be keys (sweeps and caches): controller parameters are frozen, lists to tuples."""
+    import dataclasses
+    import pickle
+
+    a = scene(controller={"name": "damping", "parameters": {"damping": [6.0, 6.0]}})
+    b = Scene.from_json(a.to_json())
+    assert a == b and hash(a) == hash(b)
+    assert {a: 1}[b] == 1
+    assert a.controller.parameters["damping"] == (6.0, 6.0)
+    assert json.loads(a.to_json())["controller"]["parameters"] == {"damping": [6.0, 6.0]}
+    other = dataclasses.replace(a, controller=dataclasses.replace(a.controller, parameters={"damping": 5.0}))
+    assert hash(other) != hash(a) and other != a
+    assert pickle.loads(pickle.dumps(a)) == a  # sent to worker processes as it is
+    with pytest.raises(TypeError, match="read-only"):
+        a.controller.parameters["damping"] = 1.0  # type: ignore[index]
+
+
+@pytest.mark.parametrize(
+    ("sections", "message"),
+    [
+        ({"solver": {"method": "linear"}}, "solver.method 'linear' needs radiation.method 'state_space'"),
+        ({"solver": {"hold": "zoh"}}, "solver.hold applies to solver.method 'linear' only"),
+        (
+            {"solver": {"method": "linear", "hold": "cubic"}, "radiation": {"method": "state_space"}},
+            "solver.hold: unknown 'cubic'; accepted: foh, zoh",
+        ),
+    ],
+)
+def test_linear_and_frequency_solvers_refuse_what_they_cannot_use(sections, message):
+    with pytest.raises(SceneError) as info:
+        scene(**sections)
+    assert message in str(info.value)

@@ -1,0 +1,443 @@
+"""The MFM equations linearised about the static equilibrium: one model that gives the state-space system with the
+radiation memory realised as extra states (DESIGN.md "linearise") and the exact frequency response from the
+database's A(omega) and B(omega).
+
+States x = [xi, xi_dot, r]: generalised displacements from the equilibrium (tangent coordinates), their rates and
+the radiation states of the scene's state-space fit (real modal form). Inputs u = [F_exc, f_pto]: the excitation
+force on every hydro DOF (world axes) and a PTO force per PTO added to the linear controller's. Then
+
+    M xi_ddot = -K xi - C xi_dot + Bw' (F_exc - C_r r) + G' f_pto,     r_dot = A_r r + B_r Bw xi_dot
+
+with M = M*(q0) (A_inf with the simulator's consistency correction), K the static stiffness with its geometric
+part and the controller's linear stiffness, C = G' diag(c) G the controller's linear damping, Bw the world-frame
+Jacobian of the hydro DOFs and G the PTO transmissions at q0. The gyroscopic and Bdot terms are quadratic in the
+velocities and vanish at equilibrium.
+
+In the frequency domain, with xi = Re[xi_hat e^{i omega t}] and the database's own A_inf:
+
+    [-omega^2 (M_db + Bw' (A(omega) - A_inf) Bw) + i omega (C + Bw' B(omega) Bw) + K] xi_hat = Bw' F_hat(omega)
+
+M_db = B(q0)' (M + A_inf) B(q0); A(omega) and B(omega) are interpolated linearly between the database's
+frequencies, as the excitation is. This exact solution needs no radiation fit.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import control
+import numpy as np
+import xarray as xr
+from scipy.linalg import expm
+
+from ..compiled import CompiledScene, interpolate_matrices, kinematics, pto_strokes, world_jacobian
+from ..multibody import body_mass_matrix
+from ..radiation import RadiationStateSpace
+from ._modal_recursion import ModalForm, ModalSteps
+
+
+def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """At the static equilibrium: B (6n, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
+    transmissions G (n_pto, nv) and the PTO strokes from their rest positions (n_pto,)."""
+    p = compiled.plant
+    rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(p.twists.shape[0]))
+    stroke, g = pto_strokes(p, compiled.q0, rot, pos, b)
+    return b, world_jacobian(rot, b)[p.hydro_index], g, stroke - p.pto_rest
+
+
+@dataclass(frozen=True)
+class HydroResponse:
+    """The database's frequency-dependent radiation coefficients on the hydro DOFs, for the exact frequency
+    response: ``omega`` [rad/s] (n_w,), ``added_mass`` A(omega) - A_inf and ``damping`` B(omega) (n_w, n_h, n_h)
+    [SI]."""
+
+    omega: np.ndarray
+    added_mass: np.ndarray
+    damping: np.ndarray
+
+    def at(self, omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """A(omega) - A_inf and B(omega) interpolated linearly at ``omega`` [rad/s] (n, n_h, n_h)."""
+        return (
+            interpolate_matrices(self.omega, self.added_mass, omega),
+            interpolate_matrices(self.omega, self.damping, omega),
+        )
+
+
+class NoStateSpace(ValueError):
+    """The model has no state-space system (its scene's radiation memory is not a state-space fit)."""
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModel:
+    """A device linearised about its static equilibrium (see the module docstring).
+
+    Attributes
+    ----------
+    mass, damping, stiffness : ndarray (nv, nv)
+        M* (with the A_inf of the scene's radiation memory), the controller's linear PTO damping C and the static
+        stiffness K with its geometric part and the controller's stiffness [SI per generalised coordinate].
+    database_mass : ndarray (nv, nv)
+        M* with the database's own A_inf, which the exact frequency response completes with A(omega) - A_inf.
+    hydro_jacobian : ndarray (n_h, nv)
+        Bw at the equilibrium; ``pto_jacobian`` (n_pto, nv): G.
+    hydro : HydroResponse
+        A(omega) - A_inf and B(omega) of the database.
+    q0 : ndarray
+        The equilibrium configuration.
+    pto_stroke : ndarray (n_pto,)
+        PTO strokes at the equilibrium, from their rest positions [m or rad].
+    controller_folded : bool
+        The controller's linear gains are in ``damping`` and ``stiffness`` (else it acts through the PTO inputs and
+        both hold no controller gains).
+    radiation : RadiationStateSpace or None
+        The radiation states' model (real modal form); None when the scene's memory is a convolution.
+    system : control.StateSpace or None
+        Continuous-time model with named states, inputs and outputs (None without ``radiation``).
+    """
+
+    mass: np.ndarray
+    damping: np.ndarray
+    stiffness: np.ndarray
+    database_mass: np.ndarray
+    hydro_jacobian: np.ndarray
+    pto_jacobian: np.ndarray
+    hydro: HydroResponse
+    q0: np.ndarray
+    pto_stroke: np.ndarray
+    controller_folded: bool
+    radiation: RadiationStateSpace | None
+    system: control.StateSpace | None
+
+    @property
+    def state_space(self) -> control.StateSpace:
+        """The state-space system.
+
+        Raises
+        ------
+        NoStateSpace
+            When the model has none (compile the scene with ``radiation.method = "state_space"``).
+        """
+        if self.system is None:
+            raise NoStateSpace(
+                "this linear model has no state-space system: compile the scene with radiation.method = "
+                "'state_space' (or 'none') so that the radiation memory is a set of states"
+            )
+        return self.system
+
+    def frequency_response(self, omega: np.ndarray) -> np.ndarray:
+        """Exact transfer matrix H(omega) (n_omega, nv, n_h) from hydro-DOF forces to generalised displacements,
+        from the database's A(omega) and B(omega) (the module docstring's equation) [SI].
+
+        Raises
+        ------
+        ValueError
+            If the controller's gains are not folded in (a controller without linear gains has no transfer
+            function).
+        """
+        if not self.controller_folded:
+            raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
+        omega = np.atleast_1d(np.asarray(omega, dtype=float))
+        added, damping = self.hydro.at(omega)
+        bw = self.hydro_jacobian
+        z = (
+            -(omega**2)[:, None, None] * (self.database_mass[None] + bw.T @ added @ bw)
+            + 1j * omega[:, None, None] * (self.damping[None] + bw.T @ damping @ bw)
+            + self.stiffness[None]
+        )
+        return np.linalg.solve(z, np.broadcast_to(bw.T, (omega.size, *bw.T.shape)).astype(complex))
+
+    @property
+    def n_states(self) -> int:
+        """Number of states (2 nv + radiation states)."""
+        return int(self.state_space.nstates)
+
+    @property
+    def force_input(self) -> np.ndarray:
+        """Input matrix (n_states, nv) of generalised forces: every input acts through it (the excitation as
+        Bw' F_exc, the PTO forces as G' f_pto)."""
+        nv = self.mass.shape[0]
+        out = np.zeros((self.n_states, nv))
+        out[nv : 2 * nv] = np.linalg.inv(self.mass)
+        return out
+
+    @property
+    def modal_form(self) -> ModalForm:
+        """The state matrix in modal coordinates (computed once; see ``wecss.sim._modal_recursion``)."""
+        cached = self.__dict__.get("_modal_form")
+        if cached is None:
+            cached = ModalForm.of(np.asarray(self.state_space.A))
+            object.__setattr__(self, "_modal_form", cached)
+        return cached
+
+    def modal_steps(self, dt: float, hold: str = "foh") -> ModalSteps:
+        """The exact step of ``dt`` [s] in modal coordinates for generalised-force inputs (cached per dt and
+        hold)."""
+        if not dt > 0:
+            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        cache = self.__dict__.setdefault("_modal_steps", {})
+        if (float(dt), hold) not in cache:
+            cache[float(dt), hold] = self.modal_form.steps(self.force_input, dt, hold)
+        return cache[float(dt), hold]
+
+    def to_dataset(self) -> xr.Dataset:
+        """The matrices with their labels, for netCDF export (``wecss.results.save``); :meth:`from_dataset`
+        reads them back (models with a state-space system only)."""
+        sys = self.state_space
+        rad = self.radiation
+        assert rad is not None
+        nv = self.mass.shape[0]
+        return xr.Dataset(
+            {
+                "A": (("state", "state_col"), np.asarray(sys.A), {"long_name": "state matrix"}),
+                "B": (("state", "input"), np.asarray(sys.B), {"long_name": "input matrix"}),
+                "C": (("output", "state"), np.asarray(sys.C), {"long_name": "output matrix"}),
+                "D": (("output", "input"), np.asarray(sys.D), {"long_name": "feedthrough matrix"}),
+                "mass": (("dof", "dof_col"), self.mass, {"long_name": "M* with A_inf at equilibrium"}),
+                "database_mass": (
+                    ("dof", "dof_col"),
+                    self.database_mass,
+                    {"long_name": "M* with the database's A_inf"},
+                ),
+                "damping": (("dof", "dof_col"), self.damping, {"long_name": "linear PTO damping G' diag(c) G"}),
+                "stiffness": (
+                    ("dof", "dof_col"),
+                    self.stiffness,
+                    {"long_name": "static stiffness with geometric part"},
+                ),
+                "hydro_jacobian": (("hydro_dof", "dof"), self.hydro_jacobian),
+                "pto_jacobian": (("pto", "dof"), self.pto_jacobian),
+                "q0": (("coordinate",), self.q0, {"long_name": "static equilibrium configuration"}),
+                "pto_stroke": (("pto",), self.pto_stroke, {"long_name": "PTO stroke at equilibrium"}),
+                "radiation_A": (("radiation_state", "radiation_state_col"), rad.A),
+                "radiation_B": (("radiation_state", "hydro_dof"), rad.B),
+                "radiation_C": (("hydro_dof", "radiation_state"), rad.C),
+                "hydro_added_mass": (("omega", "hydro_dof", "hydro_dof_col"), self.hydro.added_mass),
+                "hydro_damping": (("omega", "hydro_dof", "hydro_dof_col"), self.hydro.damping),
+            },
+            coords={
+                "state": list(sys.state_labels),
+                "input": list(sys.input_labels),
+                "output": list(sys.output_labels),
+                "dof": list(sys.state_labels[:nv]),
+                "hydro_dof": list(rad.dofs),
+                "omega": self.hydro.omega,
+                "pto": [label.removeprefix("force__") for label in sys.input_labels[len(rad.dofs) :]],
+            },
+            attrs={
+                "title": sys.name,
+                "radiation_method": rad.method,
+                "controller_folded": int(self.controller_folded),
+            },
+        )
+
+    @classmethod
+    def from_dataset(cls, ds: xr.Dataset) -> LinearModel:
+        """Inverse of :meth:`to_dataset`."""
+        sys = control.ss(
+            ds.A.values,
+            ds.B.values,
+            ds.C.values,
+            ds.D.values,
+            states=[str(s) for s in ds.state.values],
+            inputs=[str(s) for s in ds.input.values],
+            outputs=[str(s) for s in ds.output.values],
+            name=str(ds.attrs.get("title", "linear model")),
+        )
+        rad = RadiationStateSpace(
+            ds.radiation_A.values.reshape(ds.sizes.get("radiation_state", 0), -1),
+            ds.radiation_B.values.reshape(ds.sizes.get("radiation_state", 0), ds.sizes["hydro_dof"]),
+            ds.radiation_C.values.reshape(ds.sizes["hydro_dof"], ds.sizes.get("radiation_state", 0)),
+            tuple(str(d) for d in ds.hydro_dof.values),
+            str(ds.attrs.get("radiation_method", "given")),
+        )
+        hydro = HydroResponse(ds.omega.values, ds.hydro_added_mass.values, ds.hydro_damping.values)
+        return cls(
+            ds.mass.values, ds.damping.values, ds.stiffness.values, ds.database_mass.values, ds.hydro_jacobian.values,
+            ds.pto_jacobian.values.reshape(ds.sizes["pto"], -1), hydro, ds.q0.values, ds.pto_stroke.values,
+            bool(ds.attrs["controller_folded"]), rad, sys,
+        )  # fmt: skip
+
+    def discretise(self, dt: float, hold: str = "foh") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Exact discretisation x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1} over the step ``dt`` [s].
+
+        ``hold``: "foh" (inputs linear in time over a step: second order for smooth forcing; exact for such inputs)
+        or "zoh" (inputs held: G1 = 0, first order). Computed once per step and hold (matrix exponential of
+        the augmented system); :meth:`modal_steps` is the same step in modal coordinates, which the runs use.
+        """
+        if hold not in ("foh", "zoh"):
+            raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
+        if not dt > 0:
+            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        cache = self.__dict__.setdefault("_discretised", {})
+        if (float(dt), hold) not in cache:
+            cache[float(dt), hold] = self._discretise(dt, hold)
+        return cache[float(dt), hold]
+
+    def _discretise(self, dt: float, hold: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        a, b = np.asarray(self.state_space.A), np.asarray(self.state_space.B)
+        n, m = b.shape
+        block = np.zeros((n + 2 * m, n + 2 * m))
+        block[:n, :n] = a * dt
+        block[:n, n : n + m] = b * dt
+        block[n : n + m, n + m :] = np.eye(m)
+        e = expm(block)
+        phi, theta1, theta2 = e[:n, :n], e[:n, n : n + m], e[:n, n + m :]
+        if hold == "zoh":
+            return phi, theta1, np.zeros_like(theta1)
+        return phi, theta1 - theta2, theta2
+
+
+def _radiation_model(compiled: CompiledScene) -> RadiationStateSpace | None:
+    """The radiation states the scene's simulation uses (its compiled fit), none for no memory, or None for a
+    convolution."""
+    method = compiled.radiation_summary.method
+    if compiled.radiation_fit is not None:
+        return compiled.radiation_fit.model.real_modal()
+    if method == "none":
+        n_h = len(compiled.hydro.dofs)
+        empty = (np.zeros((0, 0)), np.zeros((0, n_h)), np.zeros((n_h, 0)))
+        return RadiationStateSpace(*empty, tuple(compiled.hydro.dofs), "none")
+    return None
+
+
+CACHE_SIZE: int = 32
+"""Linear models kept in memory by :func:`linearize`, by scene fingerprint (least recently used dropped)."""
+
+_CACHE: OrderedDict[str, LinearModel] = OrderedDict()
+
+
+def linearize(
+    compiled: CompiledScene, radiation: RadiationStateSpace | None = None, *, cache: bool = True
+) -> LinearModel:
+    """The linearised MFM model of a compiled scene about its static equilibrium.
+
+    Models of the scene's own radiation memory are cached in memory by the scene's fingerprint
+    (:attr:`CompiledScene.fingerprint`: scene without outputs, device, data, waves) and the compiled mass,
+    stiffness and PTO gains (which a changed copy of a compiled scene may not share), with their modal form and
+    discretisations, so a second call on the same scene (recompiled or not) costs nothing. The fit itself is
+    cached on disk by ``wecss.radiation``. The cached model is shared: do not modify its arrays.
+
+    Parameters
+    ----------
+    compiled : CompiledScene
+        Its controller's linear gains are folded into the model (other controllers act through the PTO inputs).
+        The state-space system needs ``radiation.method = "state_space"`` (its A_inf correction belongs to the fit
+        used here) or ``"none"``; with a convolution the model has the matrices and the exact frequency response
+        only.
+    radiation : RadiationStateSpace, optional
+        Radiation states (default: the scene's state-space fit, the one its simulation uses; models with other
+        radiation states are not cached).
+    cache : bool
+        Use and fill the in-memory cache.
+
+    Returns
+    -------
+    LinearModel
+
+    Raises
+    ------
+    ValueError
+        If ``radiation`` is given for a scene whose memory is not a state-space model (its A_inf correction
+        would not belong to those states), or its DOFs differ from the database's.
+    """
+    if radiation is not None and compiled.radiation_summary.method not in ("state_space", "none"):
+        raise ValueError(
+            "compile the scene with radiation.method = 'state_space' to linearise it with radiation states (its "
+            f"A_inf correction must belong to the radiation states used); it has {compiled.radiation_summary.method!r}"
+        )
+    key = _cache_key(compiled) if cache and radiation is None else None
+    if key is not None and key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    model = _linearize(compiled, radiation)
+    if key is not None:
+        _CACHE[key] = model
+        while len(_CACHE) > CACHE_SIZE:
+            _CACHE.popitem(last=False)
+    return model
+
+
+def _cache_key(compiled: CompiledScene) -> str:
+    """The scene's fingerprint and the arrays the model is built from (a compiled scene changed after compilation,
+    such as another controller or PTO damping, gets another key)."""
+    h = hashlib.sha256(compiled.fingerprint.encode())
+    p = compiled.plant
+    for array in (p.total_mass, p.pto_damping, p.pto_stiffness, compiled.stiffness, compiled.q0):
+        h.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    h.update(bytes([compiled.linear_controller]))
+    return h.hexdigest()[:32]
+
+
+def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -> LinearModel:
+    p = compiled.plant
+    b, bw, g, stroke = equilibrium_maps(compiled)
+    mass = b.T @ p.total_mass @ b
+    mass = 0.5 * (mass + mass.T)
+    # the database's own A_inf: the exact frequency response adds A(omega) - A_inf (no memory-model correction)
+    database = b.T @ (body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf) @ b
+    stiffness = compiled.stiffness  # device springs and the controller's stiffness included
+    damping = g.T @ np.diag(p.pto_damping) @ g
+    ds = compiled.hydro.dataset
+    hydro = HydroResponse(
+        compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values
+    )
+    rad = radiation.real_modal() if radiation is not None else _radiation_model(compiled)
+    system = None
+    if rad is not None:
+        if tuple(rad.dofs) != tuple(compiled.hydro.dofs):
+            raise ValueError(f"radiation model DOFs {rad.dofs} differ from the database's {compiled.hydro.dofs}")
+        system = _state_space(compiled, rad, mass, damping, stiffness, bw, g)
+    return LinearModel(
+        mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
+        compiled.linear_controller, rad, system,
+    )  # fmt: skip
+
+
+def _state_space(
+    compiled: CompiledScene,
+    rad: RadiationStateSpace,
+    mass: np.ndarray,
+    damping: np.ndarray,
+    stiffness: np.ndarray,
+    bw: np.ndarray,
+    g: np.ndarray,
+) -> control.StateSpace:
+    """The state-space system of the module docstring with named states, inputs and outputs."""
+    nv = mass.shape[0]
+    nz = rad.n_states
+    n_h, n_pto = bw.shape[0], g.shape[0]
+    minv = np.linalg.inv(mass)
+    a = np.zeros((2 * nv + nz, 2 * nv + nz))
+    a[:nv, nv : 2 * nv] = np.eye(nv)
+    a[nv : 2 * nv, :nv] = -minv @ stiffness
+    a[nv : 2 * nv, nv : 2 * nv] = -minv @ damping
+    a[nv : 2 * nv, 2 * nv :] = -minv @ bw.T @ rad.C
+    a[2 * nv :, nv : 2 * nv] = rad.B @ bw
+    a[2 * nv :, 2 * nv :] = rad.A
+    bmat = np.zeros((2 * nv + nz, n_h + n_pto))
+    bmat[nv : 2 * nv, :n_h] = minv @ bw.T
+    bmat[nv : 2 * nv, n_h:] = minv @ g.T
+    c = np.zeros((2 * nv + 2 * n_pto, 2 * nv + nz))
+    c[:nv, :nv] = np.eye(nv)
+    c[nv : 2 * nv, nv : 2 * nv] = np.eye(nv)
+    c[2 * nv : 2 * nv + n_pto, :nv] = g
+    c[2 * nv + n_pto :, nv : 2 * nv] = g
+    names = list(compiled.device.model.velocity_names)
+    ptos = [pto.name for pto in compiled.device.ptos]
+    return control.ss(
+        a,
+        bmat,
+        c,
+        np.zeros((c.shape[0], bmat.shape[1])),
+        states=[*names, *(f"{n}__rate" for n in names), *(f"radiation_{k}" for k in range(nz))],
+        inputs=[*(f"excitation__{d}" for d in compiled.hydro.dofs), *(f"force__{n}" for n in ptos)],
+        outputs=[
+            *names,
+            *(f"{n}__rate" for n in names),
+            *(f"stroke__{n}" for n in ptos),
+            *(f"stroke_rate__{n}" for n in ptos),
+        ],
+        name=f"{compiled.device.name} linearised",
+    )

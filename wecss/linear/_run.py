@@ -1,0 +1,62 @@
+"""Runs of a linear model on given generalised forces: open loop (every step at once, in modal coordinates) or
+closed by a feedback called once per control period, its force held over the period."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from ._modal_recursion import input_forcing, outputs, real_part_rows, run
+from ._model import LinearModel
+
+Feedback = Callable[[int, np.ndarray, np.ndarray], np.ndarray]
+"""``feedback(k, stroke, rate) -> force``: the PTO forces [N or N m] from the strokes (from the equilibrium) and
+rates at step k."""
+
+
+def open_loop(model: LinearModel, dt: float, hold: str, force: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """Outputs ``rows @ x`` (n_t, n_out) at every step of the exact ``hold`` discretisation for the generalised
+    forces ``force`` (n_t, nv) [one row per step of ``dt`` s], from rest."""
+    return run(model.modal_form, model.modal_steps(dt, hold), force, rows)
+
+
+def closed_loop(
+    model: LinearModel,
+    dt: float,
+    hold: str,
+    force: np.ndarray,
+    rows: np.ndarray,
+    feedback: Feedback,
+    control_steps: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Outputs ``rows @ x`` (n_t, n_out) and the PTO forces (n_t, n_pto), the force at row k acting over the step
+    from k to k + 1: ``feedback`` is called every ``control_steps`` steps and its force held (zero-order hold) in
+    between, while the generalised forces ``force`` keep the ``hold`` given."""
+    form, steps = model.modal_form, model.modal_steps(dt, hold)
+    nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
+    g = model.pto_jacobian
+    n_t = force.shape[0]
+    held = model.modal_steps(dt, "zoh")  # the PTO force is held over each step
+    held_modes = held.input0 @ g.T  # (n_modes, n_pto)
+    held_free = held.free_input0 @ g.T
+    # strokes and rates from the modal coordinates and the free states
+    measure = np.zeros((2 * n_pto, model.n_states))
+    measure[:n_pto, :nv] = g
+    measure[n_pto:, nv : 2 * nv] = g
+    measure_modes, measure_free = form.output_maps(measure)
+    forcing, free_forcing = input_forcing(steps, force)
+    free_modes = real_part_rows(steps.free_state.T)
+    z = np.zeros((n_t, form.n_modes), dtype=complex)
+    free = np.zeros((n_t, form.free.size))
+    command = np.zeros((n_t, n_pto))
+    out = np.zeros(n_pto)
+    for k in range(n_t):
+        if k % control_steps == 0:  # a control step: the force is held until the next one
+            measured = z[k].view(np.float64) @ measure_modes + free[k] @ measure_free
+            out = feedback(k, measured[:n_pto], measured[n_pto:])
+        command[k] = out
+        if k + 1 < n_t:
+            z[k + 1] = steps.decay * z[k] + forcing[k] + held_modes @ out
+            free[k + 1] = free[k] + z[k].view(np.float64) @ free_modes + free_forcing[k] + held_free @ out
+    return outputs(form, rows, z, free), command

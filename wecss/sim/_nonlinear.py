@@ -1,0 +1,240 @@
+"""The nonlinear MFM runs: fixed-step time loops (Beeman, RK4) and the scipy reference, each returning a
+:class:`Record`.
+
+The loop runs in chunks of steps inside a kernel (numba-compiled when available); between chunks it reports
+progress. A controller without linear gains is called once per step (its force held over the step), which makes
+the chunks one step long.
+"""
+
+from __future__ import annotations
+
+import sys
+import time as _time
+from typing import Any
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..compiled import CompiledScene, accelerations
+from ..scene import SceneError
+from ._control import controller_force, start_controller
+from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
+from ._result import Record, stats_start, window_statistics
+
+CHUNK_STEPS: int = 2000
+"""Steps per kernel call (progress is reported between chunks)."""
+
+CALM_VELOCITY_LIMIT: float = 1e-6
+"""In calm water, a generalised velocity above this [m/s or rad/s] means energy grew without input."""
+
+
+class SimulationDiverged(RuntimeError):
+    """The simulation left the range where its results mean anything.
+
+    Attributes
+    ----------
+    time : float
+        Time of the failing step [s].
+    step : int
+    state : dict
+        ``q`` and ``v`` at the last good step.
+    """
+
+    def __init__(self, message: str, time: float, step: int, state: dict[str, np.ndarray]) -> None:
+        super().__init__(message)
+        self.time = time
+        self.step = step
+        self.state = state
+
+
+class _Progress:
+    def __init__(self, total: int, enabled: bool) -> None:
+        self.total = total
+        self.enabled = enabled
+        self.start = _time.perf_counter()
+
+    def update(self, done: int) -> None:
+        if not self.enabled:
+            return
+        elapsed = _time.perf_counter() - self.start
+        rate = done / elapsed if elapsed > 0 else 0.0
+        width = 30
+        filled = int(width * done / self.total)
+        print(
+            f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} steps  {rate:,.0f} steps/s",
+            end="",
+            file=sys.stderr,
+            flush=True,
+        )
+        if done >= self.total:
+            print(file=sys.stderr)
+
+
+def _excitation(compiled: CompiledScene, times: np.ndarray) -> np.ndarray:
+    n_h = compiled.plant.hydro_index.size
+    if compiled.excitation is None:
+        return np.zeros((times.size, n_h))
+    return np.ascontiguousarray(compiled.excitation.force(times).T)
+
+
+def _diverged(
+    status: LoopStatus, step: int, compiled: CompiledScene, q: np.ndarray, v: np.ndarray
+) -> SimulationDiverged:
+    t = step * compiled.dt
+    reason = {
+        LoopStatus.NOT_FINITE: "the state became non-finite",
+        LoopStatus.OUT_OF_BOUNDS: f"a revolute joint angle passed the bound {compiled.scene.solver.angle_bound} rad",
+        LoopStatus.CORRECTOR_FAILED: "the Beeman corrector (fixed point and Newton) did not converge",
+    }.get(status, f"status {status}")
+    names = compiled.device.model.coordinate_names
+    return SimulationDiverged(
+        f"simulation diverged at t = {t:.6g} s (step {step}): {reason}; last good q = "
+        + ", ".join(f"{n} {x:.4g}" for n, x in zip(names, q, strict=True))
+        + ". Try a smaller solver.dt or check the device and controller.",
+        t,
+        step,
+        {"q": q.copy(), "v": v.copy()},
+    )
+
+
+def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
+    """Beeman or RK4 (the scene's ``solver.method``) over every step."""
+    scene = compiled.scene
+    p, r = compiled.plant, compiled.radiation
+    h, n = compiled.dt, compiled.n_steps
+    every = scene.outputs.every if not scene.outputs.statistics_only else 0
+    n_save = n // every + 1 if every else 0
+    nq, nv, n_pto, n_h = compiled.q0.size, p.twists.shape[0], p.pto_kind.size, p.hydro_index.size
+    out = Store(
+        every=every,
+        stats_start=stats_start(compiled),
+        q=np.zeros((n_save, nq)),
+        v=np.zeros((n_save, nv)),
+        a=np.zeros((n_save, nv)),
+        x=np.zeros((n_save, n_pto)),
+        xd=np.zeros((n_save, n_pto)),
+        f=np.zeros((n_save, n_pto)),
+        rad=np.zeros((n_save, n_h)),
+        exc=np.zeros((n_save, n_h)),
+        save_index=np.zeros(1, dtype=np.int64),
+        stats=np.zeros((4, n_pto)),  # sums over the window: absorbed power, stroke^2, count, stroke
+        evaluations=np.zeros(3, dtype=np.int64),
+    )
+    q = compiled.q0.copy()
+    v = np.zeros(nv)
+    command = np.zeros(n_pto)
+    exc0 = _excitation(compiled, np.zeros(1))[0]
+    a0, u0, x0, xd0, f0, _ = accelerations(p, q, v, exc0, r.newest, command)
+    acc, acc_prev = a0.copy(), a0.copy()
+    z = np.zeros(r.poles.size, dtype=complex)
+    u_now = u0.copy()
+    buf = np.zeros((n_h, 2 * r.depth))
+    buf[:, 0] = buf[:, r.depth] = u0
+    pos = np.zeros(1, dtype=np.int64)
+    pto_now = np.stack([x0, xd0, f0])
+    state = LoopState(q, v, acc, acc_prev, z, u_now, buf, pos, pto_now)
+    settings = StepSettings(
+        h, scene.solver.corrector_tol, scene.solver.max_corrector_iterations, compiled.bounded, scene.solver.angle_bound
+    )
+    if n_save:
+        for row, value in (
+            (out.q, q),
+            (out.v, v),
+            (out.a, a0),
+            (out.x, x0),
+            (out.xd, xd0),
+            (out.f, f0),
+            (out.exc, exc0),
+        ):
+            row[0] = value
+        out.save_index[0] = 1
+    rk4 = scene.solver.method == "rk4"
+    # a controller without linear gains is called once per control period (chunk) and its force held over it
+    chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
+    if not compiled.linear_controller:
+        start_controller(compiled)
+    bar = _Progress(n, progress)
+    start = _time.perf_counter()
+    done = 0
+    calm = compiled.excitation is None
+    while done < n:
+        m = min(chunk, n - done)
+        if not compiled.linear_controller:
+            command = controller_force(compiled, done * h, pto_now[0], pto_now[1])
+        if rk4:
+            times = (done + 0.5 * np.arange(2 * m + 1)) * h
+            status, at = rk4_chunk(p, r, _excitation(compiled, times), command, done, settings, state, out)
+        else:
+            times = (done + np.arange(m + 1)) * h
+            status, at = beeman_chunk(p, r, _excitation(compiled, times), command, done, settings, state, out)
+        if status != LoopStatus.OK:
+            raise _diverged(LoopStatus(status), at, compiled, q, v)
+        if calm and np.max(np.abs(v)) > CALM_VELOCITY_LIMIT:
+            raise SimulationDiverged(
+                f"energy grew without input: in calm water the largest velocity reached {np.max(np.abs(v)):.3g} "
+                f"by t = {(done + m) * h:.6g} s (limit {CALM_VELOCITY_LIMIT:g}); the static equilibrium or the "
+                "integration is wrong",
+                (done + m) * h,
+                done + m,
+                {"q": q.copy(), "v": v.copy()},
+            )
+        done += m
+        bar.update(done)
+    run_time = _time.perf_counter() - start
+    saved = np.arange(n_save) * every * h
+    solver: dict[str, Any]
+    if rk4:
+        solver = {"solver": "rk4"}
+    else:
+        evaluations = out.evaluations
+        solver = {
+            "solver": "beeman",
+            "evaluations_per_step": float(evaluations[0]) / max(1, n),
+            "max_evaluations_per_step": int(evaluations[1]),
+            "newton_corrector_steps": int(evaluations[2]),
+        }
+    return Record(saved, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc, out.stats, run_time, solver)
+
+
+def run_reference(compiled: CompiledScene, progress: bool) -> Record:
+    """scipy DOP853 on (q, v, Re z, Im z) at tight tolerance (state-space radiation; linear controllers only)."""
+    if not compiled.linear_controller:
+        raise SceneError("the reference solver needs a controller with linear gains (such as 'damping')")
+    scene = compiled.scene
+    p, r = compiled.plant, compiled.radiation
+    nq, nv, nz = compiled.q0.size, p.twists.shape[0], r.poles.size
+    command = np.zeros(p.pto_kind.size)
+
+    def parts(t: float, y: np.ndarray):
+        """The RK4 kernel's rates at (t, y): qd, a, zd, x, xd, f, rad; and the excitation."""
+        q, v = y[:nq], y[nq : nq + nv]
+        z = y[nq + nv : nq + nv + nz] + 1j * y[nq + nv + nz :]
+        exc = _excitation(compiled, np.array([t]))[0]
+        return (*state_rates(p, r, q, v, z, exc, command), exc)
+
+    def rates(t: float, y: np.ndarray) -> np.ndarray:
+        qd, a, zd, *_ = parts(t, y)
+        return np.concatenate([qd, a, zd.real, zd.imag])
+
+    every = scene.outputs.every if not scene.outputs.statistics_only else compiled.n_steps + 1
+    time = compiled.time  # every step, to the end, for the statistics; the saved ones are every ``every``-th
+    y0 = np.concatenate([compiled.q0, np.zeros(nv + 2 * nz)])
+    start = _time.perf_counter()
+    sol = solve_ivp(
+        rates, (0.0, time[-1]), y0, method="DOP853", t_eval=time, rtol=scene.solver.reference_rtol, atol=1e-12
+    )
+    if not sol.success:
+        raise SimulationDiverged(f"reference solver failed: {sol.message}", float(sol.t[-1]), -1, {"y": sol.y[:, -1]})
+    run_time = _time.perf_counter() - start
+    rows = [parts(t, y) for t, y in zip(sol.t, sol.y.T, strict=True)]
+    stack = {
+        k: np.array([row[i] for row in rows])
+        for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7))
+    }
+    stack["q"], stack["v"] = sol.y[:nq].T.copy(), sol.y[nq : nq + nv].T.copy()
+    stats = window_statistics(compiled, stack["x"], stack["xd"], stack["f"])
+    if progress:
+        print(f"reference solver: {sol.nfev} evaluations", file=sys.stderr)
+    saved = {k: v[::every] for k, v in stack.items()}
+    solver = {"solver": "reference", "function_evaluations": int(sol.nfev)}
+    return Record(time[::every], **saved, stats=stats, run_time=run_time, solver=solver)
