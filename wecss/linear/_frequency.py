@@ -26,6 +26,8 @@ def steady_state(compiled: CompiledScene, time: np.ndarray) -> dict[str, np.ndar
     """
     if compiled.excitation is None:
         raise ValueError("calm water: the steady state is the equilibrium")
+    if not compiled.linear_controller:
+        raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
     exc = compiled.excitation
     model = linearize(compiled)
     h = model.frequency_response(exc.omega)

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import hashlib
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import control
 import numpy as np
@@ -88,9 +88,10 @@ class LinearModel:
         The equilibrium configuration.
     pto_stroke : ndarray (n_pto,)
         PTO strokes at the equilibrium, from their rest positions [m or rad].
-    controller_folded : bool
-        The controller's linear gains are in ``damping`` and ``stiffness`` (else it acts through the PTO inputs and
-        both hold no controller gains).
+    pto_damping, pto_stiffness : ndarray (n_pto,)
+        The linear PTO gains folded into ``damping`` (G' diag(c) G) and ``stiffness`` (G' diag(k) G with the rest)
+        [N s/m or N m s/rad; N/m or N m/rad]: the scene's controller's when it has linear gains, else zero (an
+        open plant, driven through the PTO force inputs). :meth:`with_pto_gains` folds in others.
     radiation : RadiationStateSpace or None
         The radiation states' model (real modal form); None when the scene's memory is a convolution.
     system : control.StateSpace or None
@@ -106,7 +107,8 @@ class LinearModel:
     hydro: HydroResponse
     q0: np.ndarray
     pto_stroke: np.ndarray
-    controller_folded: bool
+    pto_damping: np.ndarray
+    pto_stiffness: np.ndarray
     radiation: RadiationStateSpace | None
     system: control.StateSpace | None
 
@@ -126,27 +128,66 @@ class LinearModel:
             )
         return self.system
 
-    def frequency_response(self, omega: np.ndarray) -> np.ndarray:
-        """Exact transfer matrix H(omega) (n_omega, nv, n_h) from hydro-DOF forces to generalised displacements,
-        from the database's A(omega) and B(omega) (the module docstring's equation) [SI].
-
-        Raises
-        ------
-        ValueError
-            If the controller's gains are not folded in (a controller without linear gains has no transfer
-            function).
-        """
-        if not self.controller_folded:
-            raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
+    def dynamic_stiffness(self, omega: np.ndarray) -> np.ndarray:
+        """Z(omega) (n_omega, nv, nv) with Z xi_hat = generalised force amplitudes: the bracket of the module
+        docstring's frequency-domain equation, exact from the database's A(omega) and B(omega), with the folded PTO
+        gains [SI per generalised coordinate]."""
         omega = np.atleast_1d(np.asarray(omega, dtype=float))
         added, damping = self.hydro.at(omega)
         bw = self.hydro_jacobian
-        z = (
+        return (
             -(omega**2)[:, None, None] * (self.database_mass[None] + bw.T @ added @ bw)
             + 1j * omega[:, None, None] * (self.damping[None] + bw.T @ damping @ bw)
             + self.stiffness[None]
         )
-        return np.linalg.solve(z, np.broadcast_to(bw.T, (omega.size, *bw.T.shape)).astype(complex))
+
+    def frequency_response(self, omega: np.ndarray) -> np.ndarray:
+        """Exact transfer matrix H(omega) = Z(omega)^-1 Bw' (n_omega, nv, n_h) from hydro-DOF force amplitudes to
+        generalised displacement amplitudes (see :meth:`dynamic_stiffness`) [SI]."""
+        z = self.dynamic_stiffness(omega)
+        bw = self.hydro_jacobian
+        return np.linalg.solve(z, np.broadcast_to(bw.T, (z.shape[0], *bw.T.shape)).astype(complex))
+
+    def with_pto_gains(self, damping: np.ndarray | float = 0.0, stiffness: np.ndarray | float = 0.0) -> LinearModel:
+        """The same device with the linear PTO gains ``damping`` and ``stiffness`` (one per PTO or one for all)
+        folded in instead of the present ones: f = -c x_dot - k x on every PTO stroke x [SI]. The gains act about
+        this model's equilibrium (a stiffness's static offset on a preloaded stroke is not included). With no
+        arguments: the open plant.
+
+        Raises
+        ------
+        ValueError
+            If a gain is not finite or has the wrong number of values.
+        """
+        n_pto = self.pto_jacobian.shape[0]
+        gains = []
+        for label, value in (("damping", damping), ("stiffness", stiffness)):
+            array = np.broadcast_to(np.asarray(value, dtype=float), (n_pto,)) if np.size(value) in (1, n_pto) else None
+            if array is None or not np.all(np.isfinite(array)):
+                raise ValueError(f"{label}: expected 1 or {n_pto} finite values; got {value!r}")
+            gains.append(array.copy())
+        g = self.pto_jacobian
+        change_c = g.T @ np.diag(gains[0] - self.pto_damping) @ g
+        change_k = g.T @ np.diag(gains[1] - self.pto_stiffness) @ g
+        system = None
+        if self.system is not None:
+            nv = self.mass.shape[0]
+            a = np.array(self.system.A, dtype=float)
+            minv = np.linalg.inv(self.mass)
+            a[nv : 2 * nv, :nv] -= minv @ change_k
+            a[nv : 2 * nv, nv : 2 * nv] -= minv @ change_c
+            system = control.ss(
+                a, self.system.B, self.system.C, self.system.D, states=list(self.system.state_labels),
+                inputs=list(self.system.input_labels), outputs=list(self.system.output_labels), name=self.system.name,
+            )  # fmt: skip
+        return replace(
+            self,
+            damping=self.damping + change_c,
+            stiffness=self.stiffness + change_k,
+            pto_damping=gains[0],
+            pto_stiffness=gains[1],
+            system=system,
+        )
 
     @property
     def n_states(self) -> int:
@@ -210,6 +251,8 @@ class LinearModel:
                 "pto_jacobian": (("pto", "dof"), self.pto_jacobian),
                 "q0": (("coordinate",), self.q0, {"long_name": "static equilibrium configuration"}),
                 "pto_stroke": (("pto",), self.pto_stroke, {"long_name": "PTO stroke at equilibrium"}),
+                "pto_damping": (("pto",), self.pto_damping, {"long_name": "PTO damping folded in"}),
+                "pto_stiffness": (("pto",), self.pto_stiffness, {"long_name": "PTO stiffness folded in"}),
                 "radiation_A": (("radiation_state", "radiation_state_col"), rad.A),
                 "radiation_B": (("radiation_state", "hydro_dof"), rad.B),
                 "radiation_C": (("hydro_dof", "radiation_state"), rad.C),
@@ -228,7 +271,6 @@ class LinearModel:
             attrs={
                 "title": sys.name,
                 "radiation_method": rad.method,
-                "controller_folded": int(self.controller_folded),
             },
         )
 
@@ -256,7 +298,7 @@ class LinearModel:
         return cls(
             ds.mass.values, ds.damping.values, ds.stiffness.values, ds.database_mass.values, ds.hydro_jacobian.values,
             ds.pto_jacobian.values.reshape(ds.sizes["pto"], -1), hydro, ds.q0.values, ds.pto_stroke.values,
-            bool(ds.attrs["controller_folded"]), rad, sys,
+            ds.pto_damping.values, ds.pto_stiffness.values, rad, sys,
         )  # fmt: skip
 
     def discretise(self, dt: float, hold: str = "foh") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -391,7 +433,7 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
         system = _state_space(compiled, rad, mass, damping, stiffness, bw, g)
     return LinearModel(
         mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
-        compiled.linear_controller, rad, system,
+        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, system,
     )  # fmt: skip
 
 

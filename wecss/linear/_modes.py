@@ -30,9 +30,9 @@ def modal_table(compiled: CompiledScene, *, iterations: int = 50) -> xr.Dataset:
     ValueError
         If the controller has no linear gains.
     """
-    lin = linearize(compiled)
-    if not lin.controller_folded:
+    if not compiled.linear_controller:
         raise ValueError("the modal table needs a controller with linear gains (such as 'damping')")
+    lin = linearize(compiled)
     bw = lin.hydro_jacobian
     data_omega = lin.hydro.omega
 

@@ -4,18 +4,21 @@ with linear gains (folded into the model) or closed by any other controller."""
 from __future__ import annotations
 
 import time as _time
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from ..compiled import CompiledScene
+from ..compiled import CompiledScene, compile_scene
 from ..linear import LinearModel, closed_loop, linearize, open_loop
-from ..scene import LINEAR_HOLDS
+from ..scene import LINEAR_HOLDS, Scene
 from ._control import controller_force, start_controller
 from ._result import Record, build_result, window_statistics
 
 
-def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *, hold: str = "foh") -> xr.Dataset:
+def simulate_linear(
+    compiled: CompiledScene | Scene | str | Path, model: LinearModel | None = None, *, hold: str = "foh"
+) -> xr.Dataset:
     """Time-domain run of the linear model on the scene's waves, with the exact discretisation (in modal
     coordinates: see ``wecss.linear.ModalForm``).
 
@@ -25,7 +28,8 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
     nonlinear simulator); the excitation keeps the ``hold`` given. ``simulate`` runs this for scenes with
     ``solver.method = "linear"``; call it directly for another ``model`` (a reduced one, say).
 
-    Returns a Dataset laid out as :func:`wecss.sim.simulate`'s (so every metric works on both).
+    ``compiled`` may also be a scene or a scene file (compiled here). Returns a Dataset laid out as
+    :func:`wecss.sim.simulate`'s (so every metric works on both).
 
     Raises
     ------
@@ -33,6 +37,10 @@ def simulate_linear(compiled: CompiledScene, model: LinearModel | None = None, *
         For a device with a free base (its coordinates are not linear), an unknown ``hold``, or a scene whose
         radiation memory is not a state-space model (``wecss.linear.NoStateSpace``).
     """
+    if isinstance(compiled, str | Path):
+        compiled = Scene.from_toml(compiled)
+    if isinstance(compiled, Scene):
+        compiled = compile_scene(compiled)
     if compiled.device.model.nq != compiled.device.model.nv:
         raise ValueError("the linear simulation needs joint coordinates (no free base)")
     if hold not in LINEAR_HOLDS:
