@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from wecss.control import ControlContext, Measurement
+from wecss.control import ControlContext, Controller, Measurement
 
 
-class LinearDamping:
+class LinearDamping(Controller):
     """Linear damping (and optional stiffness) per PTO.
 
     Parameters

@@ -90,6 +90,13 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "mean_pto_power": {"long_name": "mean absorbed PTO power over the statistics window", "units": "W"},
     "rms_pto_angle": {"long_name": "RMS PTO angle about its mean over the statistics window", "units": "rad"},
     "rms_pto_displacement": {"long_name": "RMS PTO stroke about its mean over the statistics window", "units": "m"},
+    "force_limit_time": {
+        "long_name": "time the controller's force was saturated at the PTO's force limit",
+        "units": "s",
+    },
+    "force_limit_episodes": {"long_name": "times the controller's force reached the PTO's force limit", "units": "1"},
+    "stroke_limit_time": {"long_name": "time the PTO stroke was beyond its limit (end stop engaged)", "units": "s"},
+    "stroke_limit_episodes": {"long_name": "times the PTO stroke passed its limit (end stop engaged)", "units": "1"},
     "excitation_force": {"long_name": "wave excitation force, world axes", "units": "N"},
     "excitation_moment": {"long_name": "wave excitation moment about the centre of mass, world axes", "units": "N m"},
     "radiation_force": {"long_name": "radiation memory force (without the A_inf part), world axes", "units": "N"},

@@ -66,7 +66,7 @@ def _info(target: str | None) -> int:
 
 def _modes(device: str) -> str:
     """The modal table of a device in calm water (its own hydrodynamic database), or why there is none."""
-    from .compiled import compile_scene
+    from .control import compile_scene
     from .linear import format_modal_table, modal_table
     from .scene import Scene, SceneError
 

@@ -9,7 +9,7 @@ import numpy as np
 
 from controllers import LinearDamping
 from wecss.compiled import from_state_space
-from wecss.control import ControlContext
+from wecss.control import ControlContext, Controller
 from wecss.radiation import RadiationStateSpace
 from wecss.sim import CompiledScene, Scene, compile_scene
 
@@ -55,7 +55,7 @@ def compiled_with_state_space(sc: Scene) -> CompiledScene:
     return with_state_space(compile_scene(none))
 
 
-class HeldDamping:
+class HeldDamping(Controller):
     """Linear damping without ``linear_gains``: the simulators call it once per step and hold its force."""
 
     needs_state = False
@@ -73,4 +73,6 @@ class HeldDamping:
 def held(compiled: CompiledScene) -> CompiledScene:
     """``compiled`` with its linear damping replaced by :class:`HeldDamping` (6 N m s/rad)."""
     plant = compiled.plant._replace(pto_damping=np.zeros_like(compiled.plant.pto_damping))
-    return dataclasses.replace(compiled, plant=plant, controller=HeldDamping(), linear_controller=False)
+    controller = HeldDamping()
+    controller.setup(compiled.control_context)
+    return dataclasses.replace(compiled, plant=plant, controller=controller, linear_controller=False)

@@ -75,9 +75,6 @@ def test_frequency_method_gives_the_steady_state_and_its_closed_form_power():
     assert "no ramp" in ds.attrs["solver"] and "frequency domain" in ds.attrs["radiation"]
 
 
-def test_frequency_method_needs_linear_gains(monkeypatch):
-    import wecss.compiled._compile as compile_module
-
-    monkeypatch.setattr(compile_module, "create_controller", lambda name, **kw: HeldDamping())
+def test_frequency_method_needs_linear_gains():
     with pytest.raises(SceneError, match="'frequency' needs a controller with linear gains"):
-        compile_scene(_sc("frequency"))
+        simulate(_sc("frequency"), controller=HeldDamping())

@@ -2,14 +2,16 @@
 and the kernels that read them: the MFM equations of motion on arrays, compiled with numba when available."""
 
 from ._compile import CompiledScene as CompiledScene
-from ._compile import compile_scene as compile_scene
+from ._compile import compile_plant as compile_plant
 from ._compile import fit_request as fit_request
 from ._compile import make_waves as make_waves
+from ._compile import with_linear_gains as with_linear_gains
 from ._jit import JIT as JIT
 from ._jit import kernel as kernel
 from ._jit import reduction_kernel as reduction_kernel
 from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate
+from ._kernels import end_stop_force as end_stop_force
 from ._kernels import hydro_velocity as hydro_velocity
 from ._kernels import integrate_configuration as integrate_configuration
 from ._kernels import kinematics as kinematics

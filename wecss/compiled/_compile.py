@@ -1,4 +1,5 @@
-"""Compile a scene into flat arrays once: the plant, the radiation memory, the wave components, the controller.
+"""Compile a scene into flat arrays once: the plant, the radiation memory, the wave components. The controller is
+attached afterwards (``wecss.control.compile_scene``), its linear gains folded in by :func:`with_linear_gains`.
 
 Everything that can fail on bad input fails here, before the time loop, with a message that says what to change.
 Whatever is dropped to save time (wave components, radiation couplings, components outside the database's
@@ -12,13 +13,11 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from .. import waves as wv
-from ..control import ControlContext, Controller
-from ..control import available as available_controllers
-from ..control import create as create_controller
 from ..devices import Device
 from ..devices import available as available_devices
 from ..devices import load as load_device
@@ -59,9 +58,10 @@ class CompiledScene:
     spectrum : Spectrum or None
         The sea state's spectrum (None for regular waves, measured elevations and calm water).
     excitation : ExcitationModel or None
-    controller : Controller
-        The controller, set up with ``control_context``.
-    control_context : ControlContext
+    controller : wecss.control.Controller or None
+        The controller set up with ``control_context`` (None for a plant compiled without one:
+        :func:`compile_plant`).
+    control_context : wecss.control.ControlContext or None
         What the controller is told at every (re)start of a run.
     linear_controller : bool
         The controller's linear gains act inside the equations of motion (else its force is held over each step).
@@ -90,8 +90,8 @@ class CompiledScene:
     waves: wv.WaveComponents | None
     spectrum: wv.Spectrum | None
     excitation: wv.ExcitationModel | None
-    controller: Controller
-    control_context: ControlContext
+    controller: Any
+    control_context: Any
     linear_controller: bool
     statics: StaticModel
     q0: np.ndarray
@@ -206,28 +206,6 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
     return waves, spectrum
 
 
-def make_controller(scene: Scene, device: Device, dt: float) -> tuple[Controller, ControlContext, bool]:
-    """The scene's controller, set up for the device's PTOs, its context, and True when it offers linear gains.
-
-    The controller owns the PTO gains; the device's PTO damping reaches it only as the context's default.
-    """
-    choice = scene.controller
-    known = available_controllers()
-    if choice.name not in known:
-        raise SceneError(f"controller.name: unknown controller {choice.name!r}; available: {', '.join(known)}")
-    context = ControlContext(
-        pto_names=tuple(p.name for p in device.ptos),
-        control_period=dt * scene.control_steps,
-        default_damping=tuple(float(p.damping) for p in device.ptos),
-    )
-    try:
-        controller = create_controller(choice.name, **choice.parameters)
-        controller.setup(context)
-    except (TypeError, ValueError) as err:
-        raise SceneError(f"controller {choice.name!r} with parameters {dict(choice.parameters)}: {err}") from None
-    return controller, context, callable(getattr(controller, "linear_gains", None))
-
-
 def make_radiation(
     scene: Scene, coupling: HydroCoupling, dt: float
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
@@ -272,13 +250,14 @@ def _added_mass_correction(
     )  # fmt: skip
 
 
-def compile_scene(scene: Scene) -> CompiledScene:
-    """Build everything the time loop needs from ``scene``.
+def compile_plant(scene: Scene) -> CompiledScene:
+    """Build everything the time loop needs from ``scene`` but the controller: the plant without PTO gains (an open
+    plant, the PTO forces its inputs). ``wecss.control.compile_scene`` attaches the scene's controller.
 
     Raises
     ------
     SceneError
-        On unknown names, missing files, periods outside the database, controllers that reject their parameters.
+        On unknown names, missing files, periods outside the database.
     """
     device = _device(scene)
     try:
@@ -300,13 +279,6 @@ def compile_scene(scene: Scene) -> CompiledScene:
                 "wave components outside the database's frequencies left out: "
                 f"{excitation.outside_share:.2e} of the variance"
             )
-    controller, context, linear = make_controller(scene, device, dt)
-    if scene.solver.method == "frequency" and not linear:
-        raise SceneError(
-            f"solver.method 'frequency' needs a controller with linear gains (such as 'damping'); "
-            f"{scene.controller.name!r} has none: use 'linear' or a time-domain solver"
-        )
-    gains = controller.linear_gains() if linear else (None, None)  # type: ignore[attr-defined]
     radiation, summary, fit = make_radiation(scene, coupling, dt)
     if scene.solver.method == "frequency":
         notes.append(
@@ -322,10 +294,7 @@ def compile_scene(scene: Scene) -> CompiledScene:
                 "A_inf adjusted so that the memory model reproduces the database's A(omega) over the sea state's "
                 f"frequencies: largest change {change:.2%} of a diagonal A_inf"
             )
-    plant = build_plant(
-        device.model, coupling, device.ptos, hydro.g, damping=gains[0], stiffness=gains[1],
-        added_mass_correction=correction,
-    )  # fmt: skip
+    plant = build_plant(device.model, coupling, device.ptos, hydro.g, added_mass_correction=correction)
     if summary.dropped_entries:
         notes.append(
             f"radiation couplings below {scene.radiation.coupling_threshold:g} of sqrt(peak_ii peak_jj) "
@@ -337,12 +306,7 @@ def compile_scene(scene: Scene) -> CompiledScene:
             f"dt < {2.5 / summary.max_pole:.3g} s (given {dt:.3g} s); use 'beeman' (exact in the radiation states) "
             "or a smaller step"
         )
-    # the controller's linear stiffness acts about the same rest stroke as the device springs (see _kernels)
-    springs = tuple(
-        dataclasses.replace(pto, stiffness=pto.stiffness + float(k))
-        for pto, k in zip(device.ptos, plant.pto_stiffness, strict=True)
-    )
-    statics = StaticModel(device.model, hydro.g, coupling, springs)
+    statics = StaticModel(device.model, hydro.g, coupling, device.ptos)
     q0 = statics.equilibrium()
     model = device.model
     bounded = [
@@ -359,9 +323,9 @@ def compile_scene(scene: Scene) -> CompiledScene:
         waves=waves,
         spectrum=spectrum,
         excitation=excitation,
-        controller=controller,
-        control_context=context,
-        linear_controller=linear,
+        controller=None,
+        control_context=None,
+        linear_controller=False,
         statics=statics,
         q0=q0,
         stiffness=statics.stiffness(q0),
@@ -370,3 +334,31 @@ def compile_scene(scene: Scene) -> CompiledScene:
         bounded=np.asarray(bounded, dtype=np.int64),
         notes=notes,
     )
+
+
+def with_linear_gains(compiled: CompiledScene, damping: np.ndarray, stiffness: np.ndarray) -> CompiledScene:
+    """``compiled`` with a linear PTO controller f = -c x_dot - k x (one gain per PTO) [SI] in its equations of
+    motion: the plant's gains set, and, for a stiffness, the statics, equilibrium and static stiffness with it
+    (the controller's stiffness acts about the same rest stroke as the device springs).
+
+    Raises
+    ------
+    ValueError
+        If the gains are not finite or not one per PTO.
+    """
+    n_pto = compiled.plant.pto_kind.size
+    damping, stiffness = (np.asarray(g, dtype=float) for g in (damping, stiffness))
+    for label, gains in (("damping", damping), ("stiffness", stiffness)):
+        if gains.shape != (n_pto,) or not np.all(np.isfinite(gains)):
+            raise ValueError(f"linear {label} gains: expected {n_pto} finite values; got {gains!r}")
+    plant = compiled.plant._replace(pto_damping=damping.copy(), pto_stiffness=stiffness.copy())
+    out = dataclasses.replace(compiled, plant=plant, linear_controller=True)
+    if np.any(stiffness != 0):
+        ptos = compiled.device.ptos
+        springs = tuple(
+            dataclasses.replace(pto, stiffness=pto.stiffness + float(k)) for pto, k in zip(ptos, stiffness, strict=True)
+        )
+        statics = StaticModel(compiled.device.model, compiled.hydro.g, compiled.coupling, springs)
+        q0 = statics.equilibrium()
+        out = dataclasses.replace(out, statics=statics, q0=q0, stiffness=statics.stiffness(q0))
+    return out

@@ -304,6 +304,18 @@ def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
 
 
 @kernel
+def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
+    """Force of the end stops (n_pto,) [N or N m]: a spring on the stroke beyond the limit and a damper while
+    engaged; zero inside the limits and for PTOs without an end stop."""
+    out = np.zeros(x.shape[0])
+    for k in range(x.shape[0]):
+        excess = abs(x[k]) - p.pto_stroke_limit[k]
+        if excess > 0.0 and p.pto_stop_stiffness[k] > 0.0:
+            out[k] = -np.sign(x[k]) * p.pto_stop_stiffness[k] * excess - p.pto_stop_damping[k] * xdot[k]
+    return out
+
+
+@kernel
 def accelerations(
     p: Plant, q: np.ndarray, v: np.ndarray, hydro_force: np.ndarray, newest: np.ndarray, pto_command: np.ndarray
 ):
@@ -321,7 +333,8 @@ def accelerations(
     Returns
     -------
     a : (nv,) accelerations; u : (n_h,) hydro velocities; x, x_dot, f : (n_pto,) PTO stroke from rest, rate and
-    total force; mass : (nv, nv) M*.
+    force (the controller's, saturated at the force limit, plus the device spring; the end stops act besides);
+    mass : (nv, nv) M*.
     """
     rot, pos, b, bdot, omega = kinematics(p, q, v)
     n = pos.shape[0]
@@ -356,8 +369,10 @@ def accelerations(
     stroke, gmat = pto_strokes(p, q, rot, pos, b)
     x = stroke - p.pto_rest
     xdot = gmat @ v
-    f = pto_command - p.pto_spring * x - p.pto_damping * xdot - p.pto_stiffness * x
-    gen += gmat.T @ f
+    # the controller's force, saturated at the PTO's force limit, and the device spring
+    control = pto_command - p.pto_damping * xdot - p.pto_stiffness * x
+    f = np.minimum(np.maximum(control, -p.pto_force_limit), p.pto_force_limit) - p.pto_spring * x
+    gen += gmat.T @ (f + end_stop_force(p, x, xdot))
     a = np.linalg.solve(0.5 * (mass + mass.T), gen)
     return a, u, x, xdot, f, mass
 

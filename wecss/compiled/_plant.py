@@ -47,6 +47,9 @@ class Plant(NamedTuple):
         pto_rest : stroke where the device spring is slack [m or rad]
         pto_spring : device spring stiffness, always present [N/m or N m/rad]
         pto_damping, pto_stiffness : gains of a linear controller applied inside the equations of motion
+        pto_force_limit : largest |controller force|, inf for none [N or N m]
+        pto_stroke_limit : largest |stroke from rest|, inf for none [m or rad]
+        pto_stop_stiffness, pto_stop_damping : the end stop beyond the stroke limit (0: none, the run stops)
     """
 
     order: np.ndarray
@@ -77,6 +80,10 @@ class Plant(NamedTuple):
     pto_spring: np.ndarray
     pto_damping: np.ndarray
     pto_stiffness: np.ndarray
+    pto_force_limit: np.ndarray
+    pto_stroke_limit: np.ndarray
+    pto_stop_stiffness: np.ndarray
+    pto_stop_damping: np.ndarray
 
 
 def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
@@ -131,6 +138,10 @@ def _pto_arrays(model: Multibody, ptos: tuple[PTO, ...]) -> dict[str, np.ndarray
         "pto_point_b": np.zeros((n, 3)),
         "pto_rest": np.zeros(n),
         "pto_spring": np.zeros(n),
+        "pto_force_limit": np.array([np.inf if p.force_limit is None else p.force_limit for p in ptos], dtype=float),
+        "pto_stroke_limit": np.array([np.inf if p.stroke_limit is None else p.stroke_limit for p in ptos], dtype=float),
+        "pto_stop_stiffness": np.array([p.end_stop_stiffness for p in ptos], dtype=float),
+        "pto_stop_damping": np.array([p.end_stop_damping for p in ptos], dtype=float),
     }
     names = model.body_names
     for k, pto in enumerate(ptos):

@@ -1,9 +1,14 @@
-"""PTO control: the controller protocol, the context and measurement a controller receives, and the registry of
-controllers by name (entry-point group ``wecss.controllers``)."""
+"""PTO control: the controller interface (what a controller declares, the context it is set up with, the
+measurement it gets), the registry of controllers by name (entry-point group ``wecss.controllers``), and the
+attachment of a controller to a compiled scene."""
 
+from ._attach import attach_controller as attach_controller
+from ._attach import compile_scene as compile_scene
+from ._attach import control_context as control_context
 from ._protocol import ControlContext as ControlContext
 from ._protocol import Controller as Controller
 from ._protocol import Measurement as Measurement
 from ._registry import ENTRY_POINT_GROUP as ENTRY_POINT_GROUP
 from ._registry import available as available
+from ._registry import check_controller as check_controller
 from ._registry import create as create

@@ -14,7 +14,8 @@ Spec layout (TOML; the same keys as a dict)::
     [[joints]]                  # name, kind, child, parent (omit for the base), axis, point [m], label
     ...
     [[ptos]]                    # kind = "joint" (joint, rest) or "actuator" (body_a, point_a, body_b, point_b,
-    ...                         # rest_length); damping, stiffness, force_limit, stroke_limit
+    ...                         # rest_length); damping, stiffness, force_limit, stroke_limit,
+                                # end_stop_stiffness, end_stop_damping (an end stop beyond the stroke limit)
 """
 
 from __future__ import annotations
@@ -29,10 +30,10 @@ from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Multibody
 _TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos"}
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label"}
-_JOINT_PTO_KEYS = {"name", "kind", "joint", "damping", "stiffness", "rest", "force_limit", "stroke_limit"}
+_LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}
+_JOINT_PTO_KEYS = {"name", "kind", "joint", "damping", "stiffness", "rest", *_LIMIT_KEYS}
 _ACTUATOR_KEYS = {
-    "name", "kind", "body_a", "point_a", "body_b", "point_b", "damping", "stiffness", "rest_length",
-    "force_limit", "stroke_limit",
+    "name", "kind", "body_a", "point_a", "body_b", "point_b", "damping", "stiffness", "rest_length", *_LIMIT_KEYS,
 }  # fmt: skip
 
 

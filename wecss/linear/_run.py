@@ -3,6 +3,7 @@ closed by a feedback called once per control period, its force held over the per
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 
 import numpy as np
@@ -10,9 +11,9 @@ import numpy as np
 from ._modal_recursion import input_forcing, outputs, real_part_rows, run
 from ._model import LinearModel
 
-Feedback = Callable[[int, np.ndarray, np.ndarray], np.ndarray]
-"""``feedback(k, stroke, rate) -> force``: the PTO forces [N or N m] from the strokes (from the equilibrium) and
-rates at step k."""
+Feedback = Callable[[int, np.ndarray, np.ndarray, Callable[[], np.ndarray]], np.ndarray]
+"""``feedback(k, stroke, rate, state) -> force``: the PTO forces [N or N m] held over the step from k to k + 1,
+from the strokes (from the equilibrium) and rates at step k; ``state()`` gives the model's state x at step k."""
 
 
 def open_loop(model: LinearModel, dt: float, hold: str, force: np.ndarray, rows: np.ndarray) -> np.ndarray:
@@ -28,11 +29,10 @@ def closed_loop(
     force: np.ndarray,
     rows: np.ndarray,
     feedback: Feedback,
-    control_steps: int,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Outputs ``rows @ x`` (n_t, n_out) and the PTO forces (n_t, n_pto), the force at row k acting over the step
-    from k to k + 1: ``feedback`` is called every ``control_steps`` steps and its force held (zero-order hold) in
-    between, while the generalised forces ``force`` keep the ``hold`` given."""
+    from k to k + 1 (the last row's is zero): ``feedback`` is called at every step but the last and its force held
+    (zero-order hold) over the step, while the generalised forces ``force`` keep the ``hold`` given."""
     form, steps = model.modal_form, model.modal_steps(dt, hold)
     nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
     g = model.pto_jacobian
@@ -50,13 +50,17 @@ def closed_loop(
     z = np.zeros((n_t, form.n_modes), dtype=complex)
     free = np.zeros((n_t, form.free.size))
     command = np.zeros((n_t, n_pto))
-    out = np.zeros(n_pto)
-    for k in range(n_t):
-        if k % control_steps == 0:  # a control step: the force is held until the next one
-            measured = z[k].view(np.float64) @ measure_modes + free[k] @ measure_free
-            out = feedback(k, measured[:n_pto], measured[n_pto:])
+
+    def state_at(k: int) -> np.ndarray:
+        x = np.zeros(model.n_states)
+        x[form.rest] = np.real(form.shapes @ z[k])
+        x[form.free] = free[k]
+        return x
+
+    for k in range(n_t - 1):  # the force of the last row would act beyond the run
+        measured = z[k].view(np.float64) @ measure_modes + free[k] @ measure_free
+        out = feedback(k, measured[:n_pto], measured[n_pto:], functools.partial(state_at, k))
         command[k] = out
-        if k + 1 < n_t:
-            z[k + 1] = steps.decay * z[k] + forcing[k] + held_modes @ out
-            free[k + 1] = free[k] + z[k].view(np.float64) @ free_modes + free_forcing[k] + held_free @ out
+        z[k + 1] = steps.decay * z[k] + forcing[k] + held_modes @ out
+        free[k + 1] = free[k] + z[k].view(np.float64) @ free_modes + free_forcing[k] + held_free @ out
     return outputs(form, rows, z, free), command

@@ -24,6 +24,22 @@ def _check_gains(name: str, damping: float, stiffness: float) -> None:
             raise ValueError(f"PTO {name!r}: {label} must be finite; got {value!r}")
 
 
+def _check_limits(pto: JointPTO | ActuatorPTO) -> None:
+    """Limits are positive when given; an end stop needs a stroke limit and non-negative constants."""
+    for label in ("force_limit", "stroke_limit"):
+        value = getattr(pto, label)
+        if value is not None and not (np.isfinite(value) and value > 0):
+            raise ValueError(f"PTO {pto.name!r}: {label} must be a positive number or None; got {value!r}")
+    for label in ("end_stop_stiffness", "end_stop_damping"):
+        value = getattr(pto, label)
+        if not (np.isfinite(value) and value >= 0):
+            raise ValueError(f"PTO {pto.name!r}: {label} must be >= 0; got {value!r}")
+    if pto.end_stop_stiffness > 0 and pto.stroke_limit is None:
+        raise ValueError(f"PTO {pto.name!r}: an end stop (end_stop_stiffness) needs a stroke_limit")
+    if pto.end_stop_damping > 0 and pto.end_stop_stiffness == 0:
+        raise ValueError(f"PTO {pto.name!r}: end_stop_damping needs an end_stop_stiffness")
+
+
 @dataclass(frozen=True)
 class JointPTO:
     """A PTO acting on the coordinate of a one-DOF joint (revolute: torque [N m]; prismatic: force [N]).
@@ -40,9 +56,13 @@ class JointPTO:
     rest : float
         Joint coordinate where the spring force vanishes [rad or m].
     force_limit : float or None
-        Largest |f| the machine can apply [N m or N]; None for no limit.
+        Largest |f| the controller can command [N m or N]: its force is saturated there; None for no limit.
     stroke_limit : float or None
-        Largest |x - rest| [rad or m]; None for no limit.
+        Largest |x - rest| [rad or m]; None for no limit. Beyond it acts the end stop, or, without one, the run
+        stops (``PtoLimitExceeded``).
+    end_stop_stiffness, end_stop_damping : float
+        The end stop beyond ``stroke_limit``: a spring [N m/rad or N/m] on the excess stroke and a damper [N m s/rad
+        or N s/m] while it is engaged; 0 for none.
     """
 
     name: str
@@ -52,9 +72,12 @@ class JointPTO:
     rest: float = 0.0
     force_limit: float | None = None
     stroke_limit: float | None = None
+    end_stop_stiffness: float = 0.0
+    end_stop_damping: float = 0.0
 
     def __post_init__(self) -> None:
         _check_gains(self.name, self.damping, self.stiffness)
+        _check_limits(self)
 
     def stroke(self, model: Multibody, q: np.ndarray, state: KinematicState) -> tuple[float, np.ndarray]:
         """Stroke x(q) (the joint coordinate) and transmission g = dx/dq (a unit vector)."""
@@ -87,7 +110,9 @@ class ActuatorPTO:
     rest_length : float or None
         Length where the spring force vanishes [m]; None: the length at the reference configuration.
     force_limit, stroke_limit : float or None
-        Largest |f| [N] and largest |c - rest_length| [m]; None for no limit.
+        Largest |f| [N] and largest |c - rest_length| [m]; None for no limit (see :class:`JointPTO`).
+    end_stop_stiffness, end_stop_damping : float
+        The end stop beyond ``stroke_limit`` [N/m, N s/m]; 0 for none.
     """
 
     name: str
@@ -100,9 +125,12 @@ class ActuatorPTO:
     rest_length: float | None = None
     force_limit: float | None = None
     stroke_limit: float | None = None
+    end_stop_stiffness: float = 0.0
+    end_stop_damping: float = 0.0
 
     def __post_init__(self) -> None:
         _check_gains(self.name, self.damping, self.stiffness)
+        _check_limits(self)
         for label in ("point_a", "point_b"):
             arr = np.asarray(getattr(self, label), dtype=float)
             if arr.shape != (3,):

@@ -7,7 +7,7 @@ For convenience the scene types (``wecss.scene``), the compilation (``wecss.comp
 
 from ..compiled import JIT as JIT
 from ..compiled import CompiledScene as CompiledScene
-from ..compiled import compile_scene as compile_scene
+from ..control import compile_scene as compile_scene
 from ..linear import LinearModel as LinearModel
 from ..linear import linearize as linearize
 from ..scene import ControllerChoice as ControllerChoice
@@ -20,6 +20,7 @@ from ..scene import SeaState as SeaState
 from ..scene import Solver as Solver
 from ..scene import default_scene_path as default_scene_path
 from ._linear import simulate_linear as simulate_linear
+from ._nonlinear import PtoLimitExceeded as PtoLimitExceeded
 from ._nonlinear import SimulationDiverged as SimulationDiverged
 from ._result import Record as Record
 from ._result import build_result as build_result

@@ -1,30 +1,106 @@
-"""The controller call, written once for every simulator: a fresh start per run and one checked force per call."""
+"""The controller call, written once for every simulator: a fresh start per run, the measurement a controller
+asked for (PTO strokes and rates always; the state, an excitation preview and the wave elevation at a point when
+declared), and one checked force per call."""
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..compiled import CompiledScene
 from ..control import Measurement
+from ..waves import evaluate, wavenumber
 
 
-def start_controller(compiled: CompiledScene) -> None:
-    """Set the scene's controller up afresh for a run (controllers with memory start from scratch)."""
-    compiled.controller.setup(compiled.control_context)
+@dataclass
+class ControlLoop:
+    """The scene's controller during one run (make it with :meth:`start`)."""
+
+    compiled: CompiledScene
+    n_pto: int
+    preview_steps: int
+    elevation_coefficients: np.ndarray | None
+
+    @classmethod
+    def start(cls, compiled: CompiledScene) -> ControlLoop:
+        """Set the scene's controller up afresh for a run (a controller with memory starts from scratch) and
+        prepare what it declared it needs."""
+        controller, context = compiled.controller, compiled.control_context
+        controller.setup(context)
+        horizon = controller.preview_horizon
+        steps = 0 if horizon is None else round(horizon / context.control_period)
+        coefficients = None
+        if controller.elevation_at is not None:
+            coefficients = _elevation_coefficients(compiled, *controller.elevation_at)
+        return cls(compiled, context.n_pto, steps, coefficients)
+
+    @property
+    def needs_state(self) -> bool:
+        """The controller asked for the full state."""
+        return bool(self.compiled.controller.needs_state)
+
+    def force(
+        self,
+        t: float,
+        displacement: np.ndarray,
+        velocity: np.ndarray,
+        state: Callable[[], np.ndarray] | None = None,
+    ) -> np.ndarray:
+        """The PTO forces [N or N m] the controller commands at time ``t`` [s] for the PTO strokes
+        ``displacement`` (from their rest positions) and ``velocity``; ``state()`` gives the simulator's state
+        when the controller asked for it.
+
+        Raises
+        ------
+        ValueError
+            If the controller returns anything but one finite force per PTO.
+        """
+        compiled = self.compiled
+        preview_times = preview = elevation = None
+        if self.preview_steps:
+            preview_times = t + compiled.control_context.control_period * np.arange(1, self.preview_steps + 1)
+            preview = _excitation(compiled, preview_times)
+        if self.elevation_coefficients is not None:
+            elevation = _elevation(compiled, self.elevation_coefficients, t)
+        measurement = Measurement(
+            np.array(displacement, dtype=float),
+            np.array(velocity, dtype=float),
+            state() if (self.needs_state and state is not None) else None,
+            preview_times,
+            preview,
+            elevation,
+        )
+        out = np.asarray(compiled.controller.compute(t, measurement), dtype=float)
+        if out.shape != (self.n_pto,) or not np.all(np.isfinite(out)):
+            raise ValueError(f"controller returned {out!r}; expected {self.n_pto} finite forces")
+        return out
 
 
-def controller_force(compiled: CompiledScene, t: float, displacement: np.ndarray, velocity: np.ndarray) -> np.ndarray:
-    """The PTO forces [N or N m] the scene's controller commands at time ``t`` [s] for the PTO strokes
-    ``displacement`` (from their rest positions) and ``velocity``.
+def _excitation(compiled: CompiledScene, times: np.ndarray) -> np.ndarray:
+    """The scene's excitation on the hydro DOFs at ``times`` (n_t, n_h) [N, N m]."""
+    if compiled.excitation is None:
+        return np.zeros((times.size, len(compiled.hydro.dofs)))
+    return np.ascontiguousarray(compiled.excitation.force(times).T)
 
-    Raises
-    ------
-    ValueError
-        If the controller returns anything but one finite force per PTO.
-    """
-    n_pto = compiled.control_context.n_pto
-    measurement = Measurement(np.array(displacement, dtype=float), np.array(velocity, dtype=float))
-    out = np.asarray(compiled.controller.compute(t, measurement), dtype=float)
-    if out.shape != (n_pto,) or not np.all(np.isfinite(out)):
-        raise ValueError(f"controller returned {out!r}; expected {n_pto} finite forces")
-    return out
+
+def _elevation_coefficients(compiled: CompiledScene, x: float, y: float) -> np.ndarray | None:
+    """Complex amplitudes of the wave components at the point (x, y) [m] (None in calm water)."""
+    waves = compiled.waves
+    if waves is None:
+        return None
+    k = wavenumber(waves.omega, compiled.hydro.water_depth, compiled.hydro.g)
+    along = x * np.cos(waves.direction) + y * np.sin(waves.direction)
+    return waves.amplitude * np.exp(-1j * k * along)
+
+
+def _elevation(compiled: CompiledScene, coefficients: np.ndarray | None, t: float) -> float:
+    """The elevation at the controller's point at time ``t`` [m], with the scene's ramp."""
+    if coefficients is None or compiled.waves is None:
+        return 0.0
+    value = float(np.real(evaluate(coefficients[None, :], compiled.waves.omega, np.array([t])))[0, 0])
+    excitation = compiled.excitation
+    if excitation is not None and excitation.ramp is not None:
+        value *= float(excitation.ramp(np.array([t]))[0])
+    return value

@@ -46,13 +46,17 @@ class LoopStatus(IntEnum):
     """A bounded coordinate (revolute angle) passed its bound."""
     CORRECTOR_FAILED = 3
     """The Beeman corrector (fixed point and Newton) did not converge."""
+    STROKE_LIMIT = 4
+    """A PTO stroke passed its limit where the PTO has no end stop."""
 
 
 class Store(NamedTuple):
     """Where the integrators record a run: every ``every``-th step (0: none) into the saved rows from
     ``save_index[0]`` on, running sums over the steps from ``stats_start`` on into ``stats`` (absorbed power,
-    stroke^2, count, stroke per PTO), and [corrector evaluations, largest per step, Newton steps] into
-    ``evaluations``."""
+    stroke^2, count, stroke per PTO), [corrector evaluations, largest per step, Newton steps] into
+    ``evaluations``, and per PTO into ``limits`` (4, n_pto): the steps with the force at its limit, the episodes
+    of it (steps where it starts), the steps with the stroke beyond its limit (the end stop engaged), the episodes
+    of that."""
 
     every: int
     stats_start: int
@@ -67,6 +71,8 @@ class Store(NamedTuple):
     save_index: np.ndarray
     stats: np.ndarray
     evaluations: np.ndarray
+    limits: np.ndarray
+    limit_last: np.ndarray
 
 
 class StepSettings(NamedTuple):
@@ -163,10 +169,19 @@ def memory_advance(
 
 
 @kernel
+def _passes_stroke_limit(p: Plant, x: np.ndarray) -> bool:
+    """A stroke beyond its limit on a PTO without an end stop (the run must stop)."""
+    for k in range(x.shape[0]):
+        if abs(x[k]) > p.pto_stroke_limit[k] and p.pto_stop_stiffness[k] == 0.0:
+            return True
+    return False
+
+
+@kernel
 def _record(
     out: Store,
     n1: int,
-    spring: np.ndarray,
+    p: Plant,
     q: np.ndarray,
     v: np.ndarray,
     a: np.ndarray,
@@ -187,6 +202,16 @@ def _record(
         out.rad[j] = rad
         out.exc[j] = exc
         out.save_index[0] = j + 1
+    for k in range(x.shape[0]):
+        saturated = abs(f[k] + p.pto_spring[k] * x[k]) >= p.pto_force_limit[k] * (1.0 - 1e-12)
+        stopped = abs(x[k]) > p.pto_stroke_limit[k]
+        for row, active in ((0, saturated), (2, stopped)):  # force at its limit; stroke beyond it (end stop)
+            if active:
+                if out.limit_last[row // 2, k] != n1 - 1:
+                    out.limits[row + 1, k] += 1  # an episode starts
+                out.limits[row, k] += 1
+                out.limit_last[row // 2, k] = n1
+    spring = p.pto_spring
     if n1 >= out.stats_start:
         out.stats[0] += -(f + spring * x) * xd  # absorbed power: the device spring's force is conservative, left out
         out.stats[1] += x * x
@@ -300,7 +325,9 @@ def beeman_chunk(
         pto_now[0] = x1
         pto_now[1] = xd1
         pto_now[2] = f1
-        _record(out, n1, p.pto_spring, q, v, acc, x1, xd1, f1, rad, excitation[k + 1])
+        if _passes_stroke_limit(p, x1):
+            return LoopStatus.STROKE_LIMIT, n1
+        _record(out, n1, p, q, v, acc, x1, xd1, f1, rad, excitation[k + 1])
     return LoopStatus.OK, step0 + n_steps
 
 
@@ -360,5 +387,7 @@ def rk4_chunk(
         pto_now[0] = x1
         pto_now[1] = xd1
         pto_now[2] = f1
-        _record(out, n1, p.pto_spring, q, v, acc, x1, xd1, f1, rad, e1)
+        if _passes_stroke_limit(p, x1):
+            return LoopStatus.STROKE_LIMIT, n1
+        _record(out, n1, p, q, v, acc, x1, xd1, f1, rad, e1)
     return LoopStatus.OK, step0 + n_steps

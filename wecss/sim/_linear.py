@@ -4,16 +4,19 @@ with linear gains (folded into the model) or closed by any other controller."""
 from __future__ import annotations
 
 import time as _time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from ..compiled import CompiledScene, compile_scene
-from ..linear import LinearModel, closed_loop, linearize, open_loop
+from ..compiled import CompiledScene, end_stop_force
+from ..control import compile_scene
+from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
 from ..scene import LINEAR_HOLDS, Scene
-from ._control import controller_force, start_controller
-from ._result import Record, build_result, window_statistics
+from ._control import ControlLoop
+from ._nonlinear import PtoLimitExceeded
+from ._result import Record, build_result, limit_counts, window_statistics
 
 
 def simulate_linear(
@@ -25,7 +28,11 @@ def simulate_linear(
     A controller with linear gains is folded into the model (open loop in the remaining inputs). Any other
     controller closes the loop: it is called once per control period (``controller.dt``, default every step)
     with the PTO strokes and rates and its force is held until the next call (zero-order hold, as in the
-    nonlinear simulator); the excitation keeps the ``hold`` given. ``simulate`` runs this for scenes with
+    nonlinear simulator); the excitation keeps the ``hold`` given. The device's PTO limits act as in the
+    nonlinear simulator: the controller's force saturated at ``force_limit``, the end stops beyond
+    ``stroke_limit`` (or a stop of the run). A folded linear controller that never reaches a limit runs open
+    loop, exactly; where it does, its gains come out of the model and act through the PTO inputs, limited and held
+    over each step (first order in dt, said in the result's solver attribute). ``simulate`` runs this for scenes with
     ``solver.method = "linear"``; call it directly for another ``model`` (a reduced one, say).
 
     ``compiled`` may also be a scene or a scene file (compiled here). Returns a Dataset laid out as
@@ -61,28 +68,26 @@ def simulate_linear(
     )
     force = exc @ model.hydro_jacobian  # generalised excitation (n_t, nv)
     stroke0 = model.pto_stroke
-    # outputs: xi, xi_dot, the acceleration's state part and (if asked for) the radiation force
-    n_states = model.n_states
     with_radiation = "radiation" in compiled.scene.outputs.variables
-    rows = np.zeros((3 * nv + (n_h if with_radiation else 0), n_states))
-    rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
-    rows[2 * nv : 3 * nv] = np.asarray(model.state_space.A)[nv : 2 * nv]
-    if with_radiation:
-        assert model.radiation is not None
-        rows[3 * nv :, 2 * nv :] = -model.radiation.C
-    if compiled.linear_controller or n_pto == 0:
-        command = np.zeros((time.size, n_pto))
-        y = open_loop(model, compiled.dt, hold, force, rows)
-    else:
-        start_controller(compiled)
-
-        def feedback(k: int, stroke: np.ndarray, rate: np.ndarray) -> np.ndarray:
-            return controller_force(compiled, float(time[k]), stroke0 + stroke, rate)
-
-        y, command = closed_loop(model, compiled.dt, hold, force, rows, feedback, compiled.scene.control_steps)
+    limited = bool(np.any(np.isfinite(p.pto_force_limit)) or np.any(np.isfinite(p.pto_stroke_limit)))
+    applied = np.zeros((time.size, n_pto))  # the controller's force held over each step (not folded in)
+    wanted = np.zeros((time.size, n_pto))  # what the controller asked for, before the force limit
+    closed = not (compiled.linear_controller or n_pto == 0)
+    if not closed:
+        y = open_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation))
+        stroke = stroke0[None] + y[:, :nv] @ g.T
+        wanted = -p.pto_damping * (y[:, nv : 2 * nv] @ g.T) - p.pto_stiffness * stroke
+        closed = limited and bool(
+            np.any(np.abs(wanted) > p.pto_force_limit) or np.any(np.abs(stroke) > p.pto_stroke_limit)
+        )
+        if closed:  # a limit is reached: the folded gains come out and act, limited, through the PTO inputs
+            model = model.with_pto_gains(0.0, 0.0)
+    if closed:
+        feedback = _feedback(compiled, model, applied, wanted)
+        y, command = closed_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation), feedback)
         # recorded at t_k, as by the nonlinear simulator: the force that acted over the step ending at t_k
-        command = np.concatenate([np.zeros((1, n_pto)), command[:-1]])
-        force += command @ g
+        force[1:] += command[:-1] @ g
+        applied = np.concatenate([np.zeros((1, n_pto)), applied[:-1]])
     every = compiled.scene.outputs.every
     keep = slice(None, None, every)
     acc = y[keep, 2 * nv : 3 * nv] + force[keep] @ model.force_input[nv : 2 * nv].T
@@ -90,7 +95,7 @@ def simulate_linear(
     xi, rate = y[:, :nv], y[:, nv : 2 * nv]
     stroke = stroke0[None] + xi @ g.T
     stroke_rate = rate @ g.T
-    pto_force = command - (p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
+    pto_force = applied - (p.pto_spring + model.pto_stiffness) * stroke - model.pto_damping * stroke_rate
     stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
     run_time = _time.perf_counter() - start
     assert model.radiation is not None
@@ -98,8 +103,70 @@ def simulate_linear(
         "solver": f"linear ({hold}, exact discretisation in {model.modal_form.n_modes} modal coordinates)",
         "radiation": f"state space, {model.radiation.n_states} real states (linear model)",
     }
+    if closed and limited:
+        solver["solver"] += "; PTO limits as a force held over each step"
     record = Record(
         time[keep], (compiled.q0[None] + xi)[keep], rate[keep], acc, stroke[keep], stroke_rate[keep],
         pto_force[keep], rad, exc[keep], stats, run_time, solver,
+        limit_counts(stroke[1:], wanted[1:], (p.pto_force_limit, p.pto_stroke_limit)),
     )  # fmt: skip
     return build_result(compiled, record)
+
+
+def _output_rows(model: LinearModel, with_radiation: bool) -> np.ndarray:
+    """Output rows of a linear run: xi, xi_dot, the acceleration's state part and (if asked for) the radiation
+    force."""
+    nv, n_h = model.mass.shape[0], model.hydro_jacobian.shape[0]
+    rows = np.zeros((3 * nv + (n_h if with_radiation else 0), model.n_states))
+    rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
+    rows[2 * nv : 3 * nv] = np.asarray(model.state_space.A)[nv : 2 * nv]
+    if with_radiation:
+        assert model.radiation is not None
+        rows[3 * nv :, 2 * nv :] = -model.radiation.C
+    return rows
+
+
+def _saturate(force: np.ndarray, limit: np.ndarray) -> np.ndarray:
+    return np.minimum(np.maximum(force, -limit), limit)
+
+
+def _linear_state(model: LinearModel, x: np.ndarray) -> np.ndarray:
+    """The measurement's state of a linear run: q0 + xi, xi_dot and the radiation states."""
+    nv = model.mass.shape[0]
+    out = x.copy()
+    out[:nv] += model.q0
+    return out
+
+
+def _feedback(compiled: CompiledScene, model: LinearModel, applied: np.ndarray, wanted: np.ndarray) -> Feedback:
+    """The PTO force of a closed linear run held over each step: the controller's (at its control period, or the
+    scene's linear gains at every step), saturated at the force limits, plus the end stops. Writes the
+    controller's part into ``applied`` and its unsaturated wish into ``wanted`` (per step)."""
+    p = compiled.plant
+    time, stroke0 = compiled.time, model.pto_stroke
+    loop = None if compiled.linear_controller else ControlLoop.start(compiled)
+    control_steps = compiled.scene.control_steps
+    held = np.zeros(p.pto_kind.size)
+
+    def feedback(k: int, stroke: np.ndarray, rate: np.ndarray, state: Callable[[], np.ndarray]) -> np.ndarray:
+        nonlocal held
+        x = stroke0 + stroke
+        if np.any((np.abs(x) > p.pto_stroke_limit) & (p.pto_stop_stiffness == 0)):
+            raise PtoLimitExceeded(
+                f"a PTO stroke passed its stroke_limit at t = {time[k]:.6g} s (step {k}) and the PTO has no end "
+                "stop: give end_stop_stiffness in the device spec for one, or reduce the motion",
+                float(time[k]),
+                k,
+                {"x": state()},
+            )
+        if loop is None:  # the scene's linear gains, taken out of the model, act held and limited
+            wanted[k] = -p.pto_damping * rate - p.pto_stiffness * x
+            applied[k] = _saturate(wanted[k], p.pto_force_limit)
+        else:
+            if k % control_steps == 0:  # a control step: the force is held until the next one
+                held = loop.force(float(time[k]), x, rate, lambda: _linear_state(model, state()))
+            wanted[k] = held
+            applied[k] = _saturate(held, p.pto_force_limit)
+        return applied[k] + end_stop_force(p, x, rate)
+
+    return feedback

@@ -17,7 +17,7 @@ from scipy.integrate import solve_ivp
 
 from ..compiled import CompiledScene, accelerations
 from ..scene import SceneError
-from ._control import controller_force, start_controller
+from ._control import ControlLoop
 from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
 from ._result import Record, stats_start, window_statistics
 
@@ -45,6 +45,10 @@ class SimulationDiverged(RuntimeError):
         self.time = time
         self.step = step
         self.state = state
+
+
+class PtoLimitExceeded(SimulationDiverged):
+    """A PTO stroke passed its ``stroke_limit`` on a PTO without an end stop (the device spec says to stop)."""
 
 
 class _Progress:
@@ -81,6 +85,14 @@ def _diverged(
     status: LoopStatus, step: int, compiled: CompiledScene, q: np.ndarray, v: np.ndarray
 ) -> SimulationDiverged:
     t = step * compiled.dt
+    if status == LoopStatus.STROKE_LIMIT:
+        return PtoLimitExceeded(
+            f"a PTO stroke passed its stroke_limit at t = {t:.6g} s (step {step}) and the PTO has no end stop: give "
+            "end_stop_stiffness (and end_stop_damping) in the device spec for one, or reduce the motion",
+            t,
+            step,
+            {"q": q.copy(), "v": v.copy()},
+        )
     reason = {
         LoopStatus.NOT_FINITE: "the state became non-finite",
         LoopStatus.OUT_OF_BOUNDS: f"a revolute joint angle passed the bound {compiled.scene.solver.angle_bound} rad",
@@ -119,6 +131,8 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
         save_index=np.zeros(1, dtype=np.int64),
         stats=np.zeros((4, n_pto)),  # sums over the window: absorbed power, stroke^2, count, stroke
         evaluations=np.zeros(3, dtype=np.int64),
+        limits=np.zeros((4, n_pto), dtype=np.int64),
+        limit_last=np.full((2, n_pto), -2, dtype=np.int64),
     )
     q = compiled.q0.copy()
     v = np.zeros(nv)
@@ -151,16 +165,19 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     rk4 = scene.solver.method == "rk4"
     # a controller without linear gains is called once per control period (chunk) and its force held over it
     chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
-    if not compiled.linear_controller:
-        start_controller(compiled)
+    loop = None if compiled.linear_controller else ControlLoop.start(compiled)
+
+    def full_state() -> np.ndarray:
+        return np.concatenate([q, v, z.real, z.imag])
+
     bar = _Progress(n, progress)
     start = _time.perf_counter()
     done = 0
     calm = compiled.excitation is None
     while done < n:
         m = min(chunk, n - done)
-        if not compiled.linear_controller:
-            command = controller_force(compiled, done * h, pto_now[0], pto_now[1])
+        if loop is not None:
+            command = loop.force(done * h, pto_now[0], pto_now[1], full_state)
         if rk4:
             times = (done + 0.5 * np.arange(2 * m + 1)) * h
             status, at = rk4_chunk(p, r, _excitation(compiled, times), command, done, settings, state, out)
@@ -193,7 +210,9 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
             "max_evaluations_per_step": int(evaluations[1]),
             "newton_corrector_steps": int(evaluations[2]),
         }
-    return Record(saved, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc, out.stats, run_time, solver)
+    record = Record(saved, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc, out.stats, run_time, solver)
+    record.limits = out.limits
+    return record
 
 
 def run_reference(compiled: CompiledScene, progress: bool) -> Record:

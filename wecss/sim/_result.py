@@ -46,6 +46,21 @@ class Record:
     stats: np.ndarray
     run_time: float
     solver: dict[str, Any] = field(default_factory=dict)
+    limits: np.ndarray | None = None
+    """Per PTO (4, n_pto): steps with the force at its limit, episodes of it, steps with the stroke beyond its
+    limit, episodes of that (None: the run did not count them)."""
+
+
+def limit_counts(stroke: np.ndarray, control: np.ndarray, limits: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """What the fixed-step kernels count of the PTO limits, from every-step strokes (from rest) and controller
+    forces (n_steps, n_pto) of a run and the (force, stroke) limits per PTO: (4, n_pto) steps with the force at its
+    limit, episodes of it, steps with the stroke beyond its limit, episodes of that."""
+    force_limit, stroke_limit = limits
+    rows = []
+    for active in (np.abs(control) >= force_limit * (1.0 - 1e-12), np.abs(stroke) > stroke_limit):
+        starts = active[0].astype(np.int64) + np.sum(active[1:] & ~active[:-1], axis=0)
+        rows += [np.sum(active, axis=0), starts]
+    return np.array(rows, dtype=np.int64).reshape(4, -1)
 
 
 def stats_start(compiled: CompiledScene) -> int:
@@ -216,6 +231,11 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     count = max(1.0, float(record.stats[2, 0])) if record.stats.size else 1.0
     if pto_names:
         data["mean_pto_power"] = (("pto",), record.stats[0] / count)
+        if record.limits is not None:  # how often and how long each limit acted, over the whole run
+            data["force_limit_time"] = (("pto",), record.limits[0] * compiled.dt)
+            data["force_limit_episodes"] = (("pto",), record.limits[1])
+            data["stroke_limit_time"] = (("pto",), record.limits[2] * compiled.dt)
+            data["stroke_limit_episodes"] = (("pto",), record.limits[3])
         mean = record.stats[3] / count
         rms = np.sqrt(np.maximum(record.stats[1] / count - mean**2, 0.0))  # about the window's mean, as the metric
         if rotary.any():
@@ -246,6 +266,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "statistics_window": scene.outputs.window,
         "radiation": str(compiled.radiation_summary),
         "controller": scene.controller.name,
+        "controller_class": f"{type(compiled.controller).__module__}.{type(compiled.controller).__qualname__}",
         "controller_parameters": json.dumps(scene.controller.parameters),
         "controller_linear_gains_in_equations": int(compiled.linear_controller),
         "numba": int(JIT),

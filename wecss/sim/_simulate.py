@@ -7,7 +7,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..compiled import CompiledScene, compile_scene
+from ..compiled import CompiledScene
+from ..control import Controller, attach_controller, compile_scene
 from ..scene import Scene
 from ._frequency import run_frequency_domain
 from ._linear import simulate_linear
@@ -15,7 +16,9 @@ from ._nonlinear import run_fixed_step, run_reference
 from ._result import build_result
 
 
-def simulate(scene: Scene | CompiledScene | str | Path, *, progress: bool = False) -> xr.Dataset:
+def simulate(
+    scene: Scene | CompiledScene | str | Path, *, controller: Controller | None = None, progress: bool = False
+) -> xr.Dataset:
     """Run a scene.
 
     ``solver.method`` chooses the run: "beeman", "rk4" or "reference" integrate the nonlinear MFM equations;
@@ -25,6 +28,9 @@ def simulate(scene: Scene | CompiledScene | str | Path, *, progress: bool = Fals
     Parameters
     ----------
     scene : Scene, CompiledScene, or path to a scene TOML file
+    controller : wecss.control.Controller, optional
+        A controller instance to run instead of the scene's ``controller`` section (which the result's notes then
+        say was not used). With a compiled scene, give the plant (``wecss.compiled.compile_plant``) or a scene.
     progress : bool
         Print a progress bar on standard error (nonlinear runs).
 
@@ -44,7 +50,12 @@ def simulate(scene: Scene | CompiledScene | str | Path, *, progress: bool = Fals
     """
     if isinstance(scene, str | Path):
         scene = Scene.from_toml(scene)
-    compiled = scene if isinstance(scene, CompiledScene) else compile_scene(scene)
+    if isinstance(scene, CompiledScene):
+        compiled = scene if controller is None else attach_controller(scene, controller)
+    elif isinstance(scene, Scene):
+        compiled = compile_scene(scene, controller)
+    else:
+        raise TypeError(f"simulate takes a Scene, a CompiledScene or a scene file; got {type(scene).__name__}")
     method = compiled.scene.solver.method
     if method == "linear":
         return simulate_linear(compiled, hold=compiled.scene.solver.linear_hold)
