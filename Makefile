@@ -39,6 +39,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/bench_radiation.py --quick
 	$(PY) studies/bench_simulator.py --quick
 	$(PY) studies/linear_vs_nonlinear.py --quick
+	$(PY) studies/control_example.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

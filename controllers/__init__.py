@@ -2,8 +2,9 @@
 
 Each follows the protocol of :mod:`wecss.control` (``setup(context)`` once per run, then ``compute(t,
 measurement)`` every control period; DESIGN.md, "Controllers"). Built-ins: ``damping`` (linear damping, by
-default the device's PTO damping: the M4 paper's 6 N m s/rad). Third-party packages register theirs under the
-same entry-point group.
+default the device's PTO damping: the M4 paper's 6 N m s/rad), ``spring-damper`` (damping and stiffness, reactive
+when the stiffness is negative). Third-party packages register theirs under the same entry-point group.
 """
 
 from ._damping import LinearDamping as LinearDamping
+from ._spring_damper import SpringDamper as SpringDamper
