@@ -272,8 +272,9 @@ def memory_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np
         for c in range(n_h):
             members = arrays.row[arrays.col[c] : arrays.col[c + 1]]
             nf, nc = int(arrays.fine_length[c]), int(arrays.coarse_length[c])
-            fine = arrays.fine[arrays.fine_start[c] : arrays.fine_start[c] + nf * members.size].reshape(nf, -1)
-            coarse = arrays.coarse[arrays.coarse_start[c] : arrays.coarse_start[c] + nc * members.size].reshape(nc, -1)
+            size = members.size  # (an empty block, such as a coarse tail of no lags, keeps its shape)
+            fine = arrays.fine[arrays.fine_start[c] : arrays.fine_start[c] + nf * size].reshape(nf, size)
+            coarse = arrays.coarse[arrays.coarse_start[c] : arrays.coarse_start[c] + nc * size].reshape(nc, size)
             lags = np.concatenate([np.arange(nf, 0, -1), nf + arrays.stride * np.arange(nc, 0, -1)])  # oldest first
             values = np.concatenate([fine, coarse])
             out[:, members, c] -= np.exp(-1j * np.outer(omega, lags * dt)) @ values
