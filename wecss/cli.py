@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import tempfile
 import time
 from collections.abc import Sequence
 from pathlib import Path
@@ -131,11 +132,12 @@ def _run(scene_path: str | None, output: str | None, png: str | None, quiet: boo
     path = Path(scene_path) if scene_path else default_scene_path()
     scene = Scene.from_toml(path)
     out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
+    picture = Path(png) if png else out.with_suffix(".png")
+    check_outputs({"result": (out, ".nc"), "picture": (picture, ".png")}, inputs=[path])
     if not quiet:
         print(f"scene {path}", file=sys.stderr)
     ds = simulate(scene, progress=not quiet)
     save(ds, out)
-    picture = Path(png) if png else out.with_suffix(".png")
     if "time" in ds.dims:
         import matplotlib.pyplot as plt
 
@@ -146,11 +148,41 @@ def _run(scene_path: str | None, output: str | None, png: str | None, quiet: boo
     return 0
 
 
+def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) -> None:
+    """Refuse, before any work, output files that would overwrite an input or each other, that lack their suffix,
+    that name a folder, or whose folder cannot be written.
+
+    Raises
+    ------
+    ValueError
+        Naming the output, what was received and what is accepted.
+    """
+    seen: dict[Path, str] = {p.resolve(): "input" for p in inputs}
+    for label, (path, suffix) in outputs.items():
+        if path.suffix.lower() != suffix:
+            raise ValueError(f"the {label} file must end in {suffix}; got {str(path)!r}")
+        if path.is_dir():
+            raise ValueError(f"the {label} file {str(path)!r} is a folder; give a file name ending in {suffix}")
+        resolved = path.resolve()
+        if resolved in seen:
+            raise ValueError(f"the {label} file {str(path)!r} is also the {seen[resolved]} file; give another name")
+        seen[resolved] = label
+        folder = resolved.parent
+        if not folder.is_dir():
+            raise ValueError(f"the folder of the {label} file, {str(folder)!r}, does not exist")
+        try:
+            with tempfile.TemporaryFile(dir=folder):
+                pass
+        except OSError as err:
+            raise ValueError(f"cannot write the {label} file in {str(folder)!r}: {err.strerror}") from None
+
+
 def _plot(result: str, png: str | None) -> int:
     from .results import open_result, plot_timeseries
 
-    ds = open_result(result)
     picture = Path(png) if png else Path(result).with_suffix(".png")
+    check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
+    ds = open_result(result)
     import matplotlib.pyplot as plt
 
     plt.close(plot_timeseries(ds, picture))
@@ -191,9 +223,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ValueError, FileNotFoundError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2
+    except OSError as err:  # a file or folder the system refused: no traceback for a user of the command
+        print(f"wecss: error: {err}", file=sys.stderr)
+        return 2
     except RuntimeError as err:  # SimulationDiverged
         print(f"wecss: {type(err).__name__}: {err}", file=sys.stderr)
         return 3
+    except KeyboardInterrupt:
+        print("wecss: interrupted; files being written were left as they were", file=sys.stderr)
+        return 130
     return 0  # pragma: no cover - argparse rejects unknown commands
 
 

@@ -2,13 +2,20 @@
 
 netCDF has no complex type, so complex variables are written with a trailing ``complex`` dimension
 holding ``[re, im]`` and merged back on read. Writes go to a temporary file in the target folder
-that is renamed over the target only when complete, so a failed write never leaves a half file.
+that is renamed over the target only when complete, so a failed write never leaves a half file. An interrupt
+(Ctrl-C) during a write is held until the temporary file is closed, then the temporary file is removed, the
+previous file left as it was and the interrupt raised (the netCDF library's file lock would otherwise hang the
+process); temporary files left by killed processes are removed by the next write to the same target.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import tempfile
+import threading
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -63,20 +70,72 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, compress: bool
     folder = target.parent if str(target.parent) else Path(".")
     if not folder.is_dir():
         raise FileNotFoundError(f"folder {str(folder)!r} for {str(target)!r} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
-    os.close(fd)
-    try:
-        split = split_complex(ds)
-        encoding = {name: {"zlib": True, "complevel": 6} for name in split.data_vars} if compress else None
-        split.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes the file private; give it the usual permissions
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    if target.is_dir():
+        raise IsADirectoryError(f"{str(target)!r} is a folder; give a file name")
+    remove_stale_temporaries(target)
+    split = split_complex(ds)
+    encoding = {name: {"zlib": True, "complevel": 6} for name in split.data_vars} if compress else None
+    with _interrupts_held() as interrupted:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.", suffix=".tmp", dir=folder)
+        os.close(fd)
+        try:
+            split.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes the file private; give it the usual permissions
+            if interrupted:  # Ctrl-C during the write: the previous file stays; raised on leaving
+                Path(tmp).unlink(missing_ok=True)
+            else:
+                os.replace(tmp, target)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
     return target
+
+
+def remove_stale_temporaries(target: Path) -> list[Path]:
+    """Remove the temporary files ``.NAME.PID.*.tmp`` next to ``target`` whose writing process is gone (killed
+    during a write); returns them."""
+    removed = []
+    for candidate in target.parent.glob(f".{target.name}.*.tmp"):
+        pid_text = candidate.name[len(target.name) + 2 :].split(".", 1)[0]
+        if pid_text.isdigit() and _alive(int(pid_text)):
+            continue  # another process is writing it now
+        with contextlib.suppress(OSError):
+            candidate.unlink()
+            removed.append(candidate)
+    return removed
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+@contextlib.contextmanager
+def _interrupts_held() -> Iterator[list[bool]]:
+    """Record SIGINT (Ctrl-C) for the duration instead of raising it (on the main thread, where Python handles
+    signals); yields a list that is true once one came, and raises KeyboardInterrupt on leaving if one did."""
+    interrupted: list[bool] = []
+    if threading.current_thread() is not threading.main_thread():
+        yield interrupted
+        return
+
+    def record(signum: int, frame: object) -> None:
+        interrupted.append(True)
+
+    previous = signal.signal(signal.SIGINT, record)
+    try:
+        yield interrupted
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if interrupted:
+        raise KeyboardInterrupt
 
 
 def read_netcdf(path: str | os.PathLike[str]) -> xr.Dataset:

@@ -1,0 +1,100 @@
+"""Nothing lost: atomic result files under interrupts and kills, and outputs checked before any run (issue 18)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from wecss.cli import main
+from wecss.netcdf import read_netcdf, remove_stale_temporaries, write_netcdf
+
+WRITER = """
+import sys, numpy as np, xarray as xr
+from wecss.netcdf import write_netcdf
+ds = xr.Dataset({"x": (("a", "b"), np.random.default_rng(0).standard_normal((4000, 6000)))})
+print("writing", flush=True)
+write_netcdf(ds, sys.argv[1])
+print("done", flush=True)
+"""
+
+
+@pytest.mark.skipif(os.name != "posix", reason="signals")
+def test_an_interrupt_during_a_write_leaves_the_previous_file_and_no_temporary(tmp_path):
+    target = tmp_path / "r.nc"
+    write_netcdf(xr.Dataset({"y": ("t", np.arange(3.0))}), target)
+    proc = subprocess.Popen([sys.executable, "-c", WRITER, str(target)], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stdout.readline().strip() == "writing"
+    time.sleep(0.3)  # inside to_netcdf: 190 MB take about a second
+    proc.send_signal(signal.SIGINT)
+    try:
+        proc.wait(timeout=60)
+    finally:
+        proc.kill()
+    assert proc.returncode != 0  # KeyboardInterrupt, not "done"
+    np.testing.assert_array_equal(read_netcdf(target).y.values, np.arange(3.0))
+    assert list(tmp_path.glob(".r.nc.*")) == []
+
+
+def test_temporaries_of_killed_writers_are_removed_and_live_ones_kept(tmp_path):
+    target = tmp_path / "r.nc"
+    dead = tmp_path / ".r.nc.999999999.abc.tmp"  # no such process
+    old = tmp_path / ".r.nc.x1y2.tmp"  # the former naming, without a process id
+    live = tmp_path / f".r.nc.{os.getpid()}.abc.tmp"
+    for p in (dead, old, live):
+        p.write_text("partial")
+    assert sorted(remove_stale_temporaries(target)) == sorted([dead, old])
+    assert live.exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["-o", "{scene}"], "the result file must end in .nc"),
+        (["-o", "r.png"], "the result file must end in .nc"),
+        (["-o", "r.nc", "--png", "r.nc"], "the picture file must end in .png"),
+        (["-o", "{folder}"], "must end in .nc"),
+        (["-o", "{folder_nc}"], "is a folder"),
+        (["-o", "{missing}/r.nc"], "does not exist"),
+    ],
+)
+def test_run_refuses_bad_outputs_before_simulating(tmp_path, capsys, args, message):
+    scene = tmp_path / "s.toml"
+    scene.write_text('[sea]\nduration = "2 Tp"\nramp = 0.0\n')
+    (tmp_path / "out.nc").mkdir()
+    names = {"scene": str(scene), "folder": str(tmp_path), "folder_nc": str(tmp_path / "out.nc")}
+    names["missing"] = str(tmp_path / "nowhere")
+    argv = ["run", str(scene), "-q", *[a.format(**names) for a in args]]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
+    assert scene.read_text().startswith("[sea]")  # the scene file is untouched
+    assert not list(tmp_path.glob("*.png"))
+
+
+def test_plot_refuses_to_overwrite_its_input(tmp_path, capsys):
+    result = tmp_path / "r.nc"
+    write_netcdf(xr.Dataset({"y": ("t", np.arange(3.0))}), result)
+    assert main(["plot", str(result), "-o", str(result)]) == 2
+    assert "must end in .png" in capsys.readouterr().err
+    assert read_netcdf(result).y.size == 3
+
+
+def test_os_errors_reach_the_user_without_a_traceback(tmp_path, capsys, monkeypatch):
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied", str(tmp_path / "r.nc"))
+
+    monkeypatch.setattr("wecss.results._io.write_netcdf", refuse)
+    scene = tmp_path / "s.toml"
+    scene.write_text('[sea]\nduration = "2 Tp"\nramp = 0.0\n[outputs]\nvariables = ["pto"]\n')
+    assert main(["run", str(scene), "-q", "-o", str(tmp_path / "r.nc")]) == 2
+    err = capsys.readouterr().err
+    assert "Permission denied" in err and "Traceback" not in err
+    assert Path(tmp_path / "r.nc").exists() is False
