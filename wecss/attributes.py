@@ -90,6 +90,10 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "mean_pto_power": {"long_name": "mean absorbed PTO power over the statistics window", "units": "W"},
     "rms_pto_angle": {"long_name": "RMS PTO angle about its mean over the statistics window", "units": "rad"},
     "rms_pto_displacement": {"long_name": "RMS PTO stroke about its mean over the statistics window", "units": "m"},
+    "power_bound": {
+        "long_name": "complex-conjugate bound of mean absorbed power for the wave components (linear, unconstrained)",
+        "units": "W",
+    },
     "force_limit_time": {
         "long_name": "time the controller's force was saturated at the PTO's force limit",
         "units": "s",

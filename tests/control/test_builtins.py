@@ -13,6 +13,8 @@ from wecss.sim import SceneError, simulate
 PARAMETERS = {
     "damping": {},
     "spring-damper": {"damping": 6.0, "stiffness": -0.5},
+    "optimal-damping": {},
+    "reactive": {},
 }
 """Parameters of each built-in for these runs (its defaults where empty)."""
 

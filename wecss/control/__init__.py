@@ -5,6 +5,16 @@ attachment of a controller to a compiled scene."""
 from ._attach import attach_controller as attach_controller
 from ._attach import compile_scene as compile_scene
 from ._attach import control_context as control_context
+from ._estimation import ExcitationEstimator as ExcitationEstimator
+from ._estimation import pto_referred as pto_referred
+from ._frequency_design import LinearGains as LinearGains
+from ._frequency_design import PowerBound as PowerBound
+from ._frequency_design import mean_power as mean_power
+from ._frequency_design import optimal_damping as optimal_damping
+from ._frequency_design import optimal_spring_damper as optimal_spring_damper
+from ._frequency_design import power_bound as power_bound
+from ._frequency_design import pto_response as pto_response
+from ._prediction import ARPredictor as ARPredictor
 from ._protocol import ControlContext as ControlContext
 from ._protocol import Controller as Controller
 from ._protocol import Measurement as Measurement

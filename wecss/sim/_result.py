@@ -18,6 +18,7 @@ import xarray as xr
 from .. import __version__
 from ..attributes import apply_attrs
 from ..compiled import JIT, CompiledScene, hydro_velocity, poses
+from ..control import PowerBound, power_bound
 from ..hydro import split_dof
 from ..multibody import JointPTO, difference
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
@@ -279,5 +280,17 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     }
     attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)
     attrs.update(sea_state_attrs(compiled))
+    if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:
+        bound = power_bound_of(compiled)
+        data["power_bound"] = (("pto",), bound.per_pto)
+        attrs["share_of_power_bound"] = float(np.sum(data["mean_pto_power"][1]) / bound.total)
     ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return apply_attrs(ds)
+
+
+def power_bound_of(compiled: CompiledScene) -> PowerBound:
+    """The complex-conjugate bound of the scene's wave components on its open plant (the exact frequency-domain
+    model; ``wecss.control.power_bound``), which every result in waves reports with its share of it."""
+    assert compiled.excitation is not None
+    exc = compiled.excitation
+    return power_bound(compiled.control_context.linear_model(), exc.omega, exc.coefficients)

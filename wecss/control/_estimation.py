@@ -1,0 +1,219 @@
+"""Causal estimation of the wave excitation from PTO measurements: a Kalman filter on the linear model augmented
+with excitation states.
+
+The plant is the device's linear model without controller (``context.linear_model()``): x' = A x + M^-1 (D w +
+G' f) in the rate rows, with w the excitation estimated along the directions D (nv, n_d) of generalised force and
+f the PTO forces, measured y = [PTO strokes, PTO stroke rates] (from the equilibrium). By default D = G': the
+excitation referred to the PTOs, w = (G M^-1 G')^-1 G M^-1 e for a generalised excitation e = Bw' F_exc, the one
+combination the PTO measurements identify (with D the identity every generalised component is estimated, but with
+fewer PTOs than coordinates they cannot be told apart). Each excitation component is the output of a bank of lightly damped
+oscillators at the sea state's frequencies driven by white noise, e_j = sum_i eta_ij, eta'' + 2 zeta w_i eta' +
+w_i^2 eta = noise, whose stationary variance is the component's expected variance split over the bank. The
+augmented system is discretised exactly at the control period with the PTO force held (zero-order hold, as the
+simulators apply it) and the excitation's noise integrated exactly (Van Loan); the steady-state Kalman gain comes
+from the discrete algebraic Riccati equation. Components the PTOs cannot see (with one PTO on m4-111, most of the
+base's surge and heave) keep their prior uncertainty: :attr:`ExcitationEstimator.observed` says how much of each
+component's variance the filter resolves. The filter's model decays at LEAK times the lowest oscillator frequency
+on top of the plant's own damping, so that modes at zero frequency (a free surge) do not leave the Riccati
+equation without a solution.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import expm, solve_discrete_are
+
+from ..linear import LinearModel
+
+LEAK: float = 1e-3
+"""Extra decay rate of the filter's plant model, relative to the lowest oscillator frequency [-]."""
+
+
+class ExcitationEstimator:
+    """Kalman filter of the plant state and the generalised excitation force (module docstring).
+
+    Parameters
+    ----------
+    model : LinearModel
+        The device's linear model with a state-space system (``context.linear_model()``: no controller folded
+        in; the PTO forces are known inputs).
+    dt : float
+        Control period [s]: one :meth:`update` per period, the PTO force held over it.
+    frequencies : array_like
+        Centre frequencies of the oscillator bank [rad/s] (e.g. spread over the spectrum's band).
+    variance : array_like (n_d,)
+        Expected variance of each estimated excitation component [N^2 or (N m)^2] (0: a component not estimated).
+    measurement_std : array_like (2 n_pto,)
+        Standard deviation of the measurement noise of the strokes, then the rates [m or rad; m/s or rad/s].
+    damping_ratio : float
+        Damping ratio of the oscillators [-] (light: the excitation is narrow-banded around each).
+    directions : array_like (nv, n_d) or None
+        The generalised-force directions of the estimated components (default G': one per PTO).
+
+    Raises
+    ------
+    ValueError
+        On shapes that disagree, non-positive noise or frequencies, or a model without state space.
+    """
+
+    def __init__(
+        self,
+        model: LinearModel,
+        dt: float,
+        frequencies: np.ndarray,
+        variance: np.ndarray,
+        measurement_std: np.ndarray,
+        *,
+        damping_ratio: float = 0.05,
+        directions: np.ndarray | None = None,
+    ) -> None:
+        system = model.state_space
+        nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
+        directions = model.pto_jacobian.T if directions is None else np.asarray(directions, dtype=float)
+        if directions.ndim != 2 or directions.shape[0] != nv:
+            raise ValueError(f"directions must be (nv, n_d) with nv = {nv}; got shape {directions.shape}")
+        n_d = directions.shape[1]
+        frequencies = np.atleast_1d(np.asarray(frequencies, dtype=float))
+        variance = np.asarray(variance, dtype=float)
+        measurement_std = np.asarray(measurement_std, dtype=float)
+        if not dt > 0:
+            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        if frequencies.ndim != 1 or frequencies.size == 0 or not np.all(frequencies > 0):
+            raise ValueError(f"frequencies must be positive [rad/s], at least one; got {frequencies!r}")
+        if variance.shape != (n_d,) or not np.all(variance >= 0) or not np.any(variance > 0):
+            raise ValueError(f"variance: expected {n_d} non-negative values, some positive; got {variance!r}")
+        if measurement_std.shape != (2 * n_pto,) or not np.all(measurement_std > 0):
+            raise ValueError(f"measurement_std: expected {2 * n_pto} positive values; got {measurement_std!r}")
+        if not 0 < damping_ratio < 1:
+            raise ValueError(f"damping_ratio must lie in (0, 1); got {damping_ratio!r}")
+        a = np.array(system.A, dtype=float)
+        n = a.shape[0]
+        # modes at zero frequency (a free surge and its rate: no restoring force, no radiation damping at DC)
+        # cannot be seen by the PTOs: every mode of the filter's model decays a little faster, so that the filter
+        # exists (the Riccati equation needs a detectable model); wave-frequency dynamics are unchanged to 1e-3
+        a -= LEAK * float(np.min(frequencies)) * np.eye(n)
+        estimated = np.flatnonzero(variance > 0)
+        n_osc = frequencies.size
+        m = 2 * n_osc * estimated.size  # oscillator states: (position, rate) per frequency per component
+        # the oscillator bank: e_j = sum_i eta_ij; eta'' + 2 zeta w eta' + w^2 eta = q_ij white noise
+        a_osc = np.zeros((m, m))
+        out_osc = np.zeros((n_d, m))
+        noise = np.zeros((m, m))
+        for c, j in enumerate(estimated):
+            for i, w in enumerate(frequencies):
+                k = 2 * (c * n_osc + i)
+                a_osc[k, k + 1] = 1.0
+                a_osc[k + 1, k] = -(w**2)
+                a_osc[k + 1, k + 1] = -2 * damping_ratio * w
+                out_osc[j, k] = 1.0
+                # stationary variance of eta is q / (4 zeta w^3): the component's variance split over the bank
+                noise[k + 1, k + 1] = 4 * damping_ratio * w**3 * variance[j] / n_osc
+        force_input = model.force_input  # generalised force -> state derivative (n, nv)
+        big = np.zeros((n + m, n + m))
+        big[:n, :n] = a
+        big[:n, n:] = force_input @ directions @ out_osc
+        big[n:, n:] = a_osc
+        pto_input = force_input @ model.pto_jacobian.T  # (n, n_pto)
+        # exact step: the state transition, the held PTO force, and the integrated excitation noise (Van Loan)
+        q_big = np.zeros((n + m, n + m))
+        q_big[n:, n:] = noise
+        van_loan = np.zeros((2 * (n + m), 2 * (n + m)))
+        van_loan[: n + m, : n + m] = -big
+        van_loan[: n + m, n + m :] = q_big
+        van_loan[n + m :, n + m :] = big.T
+        e = expm(van_loan * dt)
+        phi = e[n + m :, n + m :].T
+        q_d = phi @ e[: n + m, n + m :]
+        held = np.zeros((n + m + n_pto, n + m + n_pto))
+        held[: n + m, : n + m] = big * dt
+        held[:n, n + m :] = pto_input * dt
+        gamma = expm(held)[: n + m, n + m :]
+        nv_rows = nv
+        measure = np.zeros((2 * n_pto, n + m))
+        measure[:n_pto, :nv_rows] = model.pto_jacobian
+        measure[n_pto:, nv_rows : 2 * nv_rows] = model.pto_jacobian
+        r = np.diag(measurement_std**2)
+        q_d = 0.5 * (q_d + q_d.T) + 1e-12 * np.max(np.abs(q_d)) * np.eye(n + m)
+        p = solve_discrete_are(phi.T, measure.T, q_d, r)
+        innovation = measure @ p @ measure.T + r
+        self.gain = p @ measure.T @ np.linalg.inv(innovation)
+        posterior = p - self.gain @ measure @ p
+        prior = np.diag(out_osc @ p[n:, n:] @ out_osc.T)
+        after = np.diag(out_osc @ posterior[n:, n:] @ out_osc.T)
+        self.observed = np.where(prior > 0, 1.0 - after / np.where(prior > 0, prior, 1.0), 0.0)
+        """Share of each component's predicted variance one update resolves [-] (0: the PTOs do not see it)."""
+        self.phi, self.gamma, self.measure, self.output = phi, gamma, measure, out_osc
+        self.n_plant, self.stroke0 = n, model.pto_stroke.copy()
+        self.x = np.zeros(n + m)
+        self._force = np.zeros(n_pto)
+
+    @classmethod
+    def for_sea(
+        cls,
+        model: LinearModel,
+        dt: float,
+        omega: np.ndarray,
+        coefficients: np.ndarray,
+        *,
+        n_frequencies: int = 8,
+        relative_noise: float = 1e-3,
+        damping_ratio: float = 0.05,
+    ) -> ExcitationEstimator:
+        """An estimator of the excitation referred to the PTOs, tuned to a sea state's wave components
+        (``context.excitation.omega`` and ``.coefficients``): oscillators at ``n_frequencies`` quantiles of the
+        excitation's energy, each component's variance from the spectrum, and measurement noise
+        ``relative_noise`` times the measured signals' RMS in the open plant's steady state.
+
+        Raises
+        ------
+        ValueError
+            On bad wave data or settings.
+        """
+        omega = np.asarray(omega, dtype=float)
+        referred = pto_referred(model, model.hydro_jacobian.T @ np.asarray(coefficients, dtype=complex))
+        energy = 0.5 * np.abs(referred) ** 2
+        variance = np.sum(energy, axis=1)
+        weights = np.cumsum(np.sum(energy, axis=0))
+        if not n_frequencies >= 1 or weights[-1] <= 0:
+            raise ValueError(f"n_frequencies must be >= 1 and the waves must carry energy; got {n_frequencies!r}")
+        quantiles = (np.arange(n_frequencies) + 0.5) / n_frequencies * weights[-1]
+        frequencies = np.interp(quantiles, weights, omega)
+        h = model.with_pto_gains().frequency_response(omega)  # (n_w, nv, n_h)
+        xi = np.einsum("wvj,jw->vw", h, np.asarray(coefficients, dtype=complex))
+        strokes = model.pto_jacobian @ xi
+        rms = np.sqrt(0.5 * np.concatenate([np.sum(np.abs(strokes) ** 2, 1), np.sum(np.abs(omega * strokes) ** 2, 1)]))
+        if not relative_noise > 0:
+            raise ValueError(f"relative_noise must be positive; got {relative_noise!r}")
+        return cls(model, dt, frequencies, variance, relative_noise * rms, damping_ratio=damping_ratio)
+
+    def reset(self) -> None:
+        """Start again from rest (no excitation known)."""
+        self.x[:] = 0.0
+        self._force[:] = 0.0
+
+    def update(self, stroke: np.ndarray, rate: np.ndarray, force: np.ndarray) -> np.ndarray:
+        """One control period: predict over it with the PTO force ``force`` [N or N m] held since the last update,
+        then correct with the measured PTO strokes (from their rest positions) and rates; returns the estimated
+        excitation components (n_d,) now [N or N m]. The next call takes the force applied from now on."""
+        predicted = self.phi @ self.x + self.gamma @ self._force
+        measured = np.concatenate([np.asarray(stroke, dtype=float) - self.stroke0, np.asarray(rate, dtype=float)])
+        self.x = predicted + self.gain @ (measured - self.measure @ predicted)
+        self._force = np.asarray(force, dtype=float).copy()
+        return self.excitation
+
+    @property
+    def excitation(self) -> np.ndarray:
+        """The estimated excitation components (n_d,) [N or N m]: referred to the PTOs by default."""
+        return self.output @ self.x[self.n_plant :]
+
+    @property
+    def state(self) -> np.ndarray:
+        """The estimated plant state (the linear model's x: xi, xi_dot, radiation states)."""
+        return self.x[: self.n_plant].copy()
+
+
+def pto_referred(model: LinearModel, generalised: np.ndarray) -> np.ndarray:
+    """The excitation referred to the PTOs, w = (G M^-1 G')^-1 G M^-1 e, of generalised excitation forces e
+    (nv, ...) [N or N m]: the PTO forces that would give the PTO coordinates the same acceleration."""
+    g, minv = model.pto_jacobian, np.linalg.inv(model.mass)
+    return np.linalg.solve(g @ minv @ g.T, g @ minv @ generalised)
