@@ -3,6 +3,7 @@ autoregressive model), against the true excitation (issue 13)."""
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 
 import control
@@ -110,7 +111,7 @@ def test_prediction_error_grows_with_the_horizon(float_run):
         miss = [predictor.predict(e[: s + 1], steps)[-1, 0] - e[s + steps] for s in starts]
         errors.append(float(np.sqrt(np.mean(np.square(miss))) / np.std(e)))
     assert errors[0] < 0.01
-    assert all(a < b for a, b in zip(errors, errors[1:], strict=False)), errors
+    assert all(a < b for a, b in itertools.pairwise(errors)), errors
 
 
 def test_bad_settings_are_refused():

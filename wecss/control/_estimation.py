@@ -1,21 +1,21 @@
-"""Causal estimation of the wave excitation from PTO measurements: a Kalman filter on the linear model augmented
-with excitation states.
+"""Causal estimation of the wave excitation from PTO measurements: a Kalman filter on the linear model augmented with
+excitation states.
 
-The plant is the device's linear model without controller (``context.linear_model()``): x' = A x + M^-1 (D w +
-G' f) in the rate rows, with w the excitation estimated along the directions D (nv, n_d) of generalised force and
-f the PTO forces, measured y = [PTO strokes, PTO stroke rates] (from the equilibrium). By default D = G': the
-excitation referred to the PTOs, w = (G M^-1 G')^-1 G M^-1 e for a generalised excitation e = Bw' F_exc, the one
-combination the PTO measurements identify (with D the identity every generalised component is estimated, but with
-fewer PTOs than coordinates they cannot be told apart). Each excitation component is the output of a bank of lightly damped
+The plant is the device's linear model without controller (``context.linear_model()``): x' = A x + M^-1 (D w + G' f)
+in the rate rows, with w the excitation estimated along the directions D (nv, n_d) of generalised force and f the
+PTO forces, measured y = [PTO strokes, PTO stroke rates] (from the equilibrium). By default D = G': the excitation
+referred to the PTOs, w = (G M^-1 G')^-1 G M^-1 e for a generalised excitation e = Bw' F_exc, the one combination
+the PTO measurements identify (with D the identity every generalised component is estimated, but with fewer PTOs
+than coordinates they cannot be told apart). Each excitation component is the output of a bank of lightly damped
 oscillators at the sea state's frequencies driven by white noise, e_j = sum_i eta_ij, eta'' + 2 zeta w_i eta' +
-w_i^2 eta = noise, whose stationary variance is the component's expected variance split over the bank. The
-augmented system is discretised exactly at the control period with the PTO force held (zero-order hold, as the
-simulators apply it) and the excitation's noise integrated exactly (Van Loan); the steady-state Kalman gain comes
-from the discrete algebraic Riccati equation. Components the PTOs cannot see (with one PTO on m4-111, most of the
-base's surge and heave) keep their prior uncertainty: :attr:`ExcitationEstimator.observed` says how much of each
-component's variance the filter resolves. The filter's model decays at LEAK times the lowest oscillator frequency
-on top of the plant's own damping, so that modes at zero frequency (a free surge) do not leave the Riccati
-equation without a solution.
+w_i^2 eta = noise, whose stationary variance is the component's expected variance split over the bank. The augmented
+system is discretised exactly at the control period with the PTO force held (zero-order hold, as the simulators
+apply it) and the excitation's noise integrated exactly (Van Loan); the steady-state Kalman gain comes from the
+discrete algebraic Riccati equation. Components the PTOs cannot see (with one PTO on m4-111, most of the base's
+surge and heave) keep their prior uncertainty: :attr:`ExcitationEstimator.observed` says how much of each
+component's variance the filter resolves. The filter's model decays at LEAK times the lowest oscillator frequency on
+top of the plant's own damping, so that modes at zero frequency (a free surge) do not leave the Riccati equation
+without a solution.
 """
 
 from __future__ import annotations
