@@ -40,6 +40,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/bench_simulator.py --quick
 	$(PY) studies/linear_vs_nonlinear.py --quick
 	$(PY) studies/control_example.py --quick
+	$(PY) studies/control_table.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache
