@@ -60,6 +60,8 @@ def test_a_controller_object_gets_the_state_and_the_preview_exactly(method):
         q = np.concatenate([ds.displacement.values[k], angles[k]])
         order = [names.index(n) for n in compiled.device.model.coordinate_names]
         np.testing.assert_allclose(m.state[:nq], q[order], rtol=0, atol=1e-12)
+        v = np.concatenate([ds.velocity.values[k], ds.angular_velocity.values[k]])
+        np.testing.assert_allclose(m.state[nq : 2 * nq], v[order], rtol=0, atol=1e-12)
         times = t + 0.006 * np.arange(1, 5)
         np.testing.assert_allclose(m.preview_times, times, rtol=0, atol=1e-12)
         np.testing.assert_allclose(m.preview, compiled.excitation.force(times).T, rtol=1e-12, atol=1e-12)
