@@ -304,15 +304,18 @@ def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
 
 
 @kernel
+def end_stop(p: Plant, k: int, x: float, xdot: float) -> float:
+    """Force of PTO k's end stop [N or N m] at stroke ``x`` and rate ``xdot``: a spring on the stroke beyond the
+    limit and a damper while engaged; zero inside the limit and for a PTO without an end stop."""
+    excess = abs(x) - p.pto_stroke_limit[k]
+    if excess > 0.0 and p.pto_stop_stiffness[k] > 0.0:
+        return -np.sign(x) * p.pto_stop_stiffness[k] * excess - p.pto_stop_damping[k] * xdot
+    return 0.0
+
+
 def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
-    """Force of the end stops (n_pto,) [N or N m]: a spring on the stroke beyond the limit and a damper while
-    engaged; zero inside the limits and for PTOs without an end stop."""
-    out = np.zeros(x.shape[0])
-    for k in range(x.shape[0]):
-        excess = abs(x[k]) - p.pto_stroke_limit[k]
-        if excess > 0.0 and p.pto_stop_stiffness[k] > 0.0:
-            out[k] = -np.sign(x[k]) * p.pto_stop_stiffness[k] * excess - p.pto_stop_damping[k] * xdot[k]
-    return out
+    """Forces of every PTO's end stop (n_pto,) [N or N m] (see :func:`end_stop`)."""
+    return np.array([end_stop(p, k, float(x[k]), float(xdot[k])) for k in range(x.shape[0])])
 
 
 @kernel
@@ -372,7 +375,11 @@ def accelerations(
     # the controller's force, saturated at the PTO's force limit, and the device spring
     control = pto_command - p.pto_damping * xdot - p.pto_stiffness * x
     f = np.minimum(np.maximum(control, -p.pto_force_limit), p.pto_force_limit) - p.pto_spring * x
-    gen += gmat.T @ (f + end_stop_force(p, x, xdot))
+    gen += gmat.T @ f
+    for k in range(x.shape[0]):  # the end stops, where engaged (no allocation on the usual path)
+        stop = end_stop(p, k, x[k], xdot[k])
+        if stop != 0.0:
+            gen += gmat[k] * stop
     a = np.linalg.solve(0.5 * (mass + mass.T), gen)
     return a, u, x, xdot, f, mass
 
