@@ -22,7 +22,7 @@ from ..devices import Device
 from ..devices import available as available_devices
 from ..devices import load as load_device
 from ..hydro import HydroData
-from ..multibody import HydroCoupling, StaticModel
+from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
 from ..scene import Scene, SceneError
 from ._plant import Plant, build_plant
@@ -110,6 +110,22 @@ class CompiledScene:
     def time(self) -> np.ndarray:
         """Times of every step [s]."""
         return np.arange(self.n_steps + 1) * self.dt
+
+    def excitation_at(self, times: np.ndarray) -> np.ndarray:
+        """The scene's excitation on the hydrodynamic DOFs at ``times`` (n_t, n_h) [N, N m], ramp included (zero
+        in calm water)."""
+        if self.excitation is None:
+            return np.zeros((np.size(times), len(self.hydro.dofs)))
+        return np.ascontiguousarray(self.excitation.force(np.asarray(times, dtype=float)).T)
+
+    @property
+    def pto_kinds(self) -> tuple[str, ...]:
+        """Per PTO "rotary" (a joint PTO on a revolute joint: torque [N m], stroke [rad]) or "linear"."""
+        model = self.device.model
+        return tuple(
+            "rotary" if isinstance(p, JointPTO) and model.joint(p.joint).kind == "revolute" else "linear"
+            for p in self.device.ptos
+        )
 
     @property
     def fingerprint(self) -> str:

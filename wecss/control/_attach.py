@@ -11,18 +11,9 @@ import numpy as np
 
 from ..compiled import CompiledScene, compile_plant, with_linear_gains
 from ..linear import LinearModel, linearize
-from ..multibody import JointPTO
 from ..scene import Scene, SceneError
 from ._protocol import ControlContext, Controller
 from ._registry import available, check_controller, create
-
-
-def _pto_kinds(compiled: CompiledScene) -> tuple[str, ...]:
-    model = compiled.device.model
-    return tuple(
-        "rotary" if isinstance(p, JointPTO) and model.joint(p.joint).kind == "revolute" else "linear"
-        for p in compiled.device.ptos
-    )
 
 
 def control_context(compiled: CompiledScene) -> ControlContext:
@@ -39,7 +30,7 @@ def control_context(compiled: CompiledScene) -> ControlContext:
         pto_names=tuple(p.name for p in compiled.device.ptos),
         control_period=compiled.dt * scene.control_steps,
         default_damping=tuple(float(p.damping) for p in compiled.device.ptos),
-        pto_kinds=_pto_kinds(compiled),
+        pto_kinds=compiled.pto_kinds,
         force_limit=tuple(float(x) for x in plant.pto_force_limit),
         stroke_limit=tuple(float(x) for x in plant.pto_stroke_limit),
         time_step=compiled.dt,

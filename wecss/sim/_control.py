@@ -61,7 +61,7 @@ class ControlLoop:
         preview_times = preview = elevation = None
         if self.preview_steps:
             preview_times = t + compiled.control_context.control_period * np.arange(1, self.preview_steps + 1)
-            preview = _excitation(compiled, preview_times)
+            preview = compiled.excitation_at(preview_times)
         if self.elevation_coefficients is not None:
             elevation = _elevation(compiled, self.elevation_coefficients, t)
         measurement = Measurement(
@@ -76,13 +76,6 @@ class ControlLoop:
         if out.shape != (self.n_pto,) or not np.all(np.isfinite(out)):
             raise ValueError(f"controller returned {out!r}; expected {self.n_pto} finite forces")
         return out
-
-
-def _excitation(compiled: CompiledScene, times: np.ndarray) -> np.ndarray:
-    """The scene's excitation on the hydro DOFs at ``times`` (n_t, n_h) [N, N m]."""
-    if compiled.excitation is None:
-        return np.zeros((times.size, len(compiled.hydro.dofs)))
-    return np.ascontiguousarray(compiled.excitation.force(times).T)
 
 
 def _elevation_coefficients(compiled: CompiledScene, x: float, y: float) -> np.ndarray | None:

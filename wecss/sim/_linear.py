@@ -61,11 +61,7 @@ def simulate_linear(
     nv, n_h, n_pto = model.mass.shape[0], model.hydro_jacobian.shape[0], model.pto_jacobian.shape[0]
     g = model.pto_jacobian
     time = compiled.time
-    exc = (
-        np.ascontiguousarray(compiled.excitation.force(time).T)
-        if compiled.excitation is not None
-        else np.zeros((time.size, n_h))
-    )
+    exc = compiled.excitation_at(time)
     force = exc @ model.hydro_jacobian  # generalised excitation (n_t, nv)
     stroke0 = model.pto_stroke
     with_radiation = "radiation" in compiled.scene.outputs.variables

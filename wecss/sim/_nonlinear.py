@@ -74,13 +74,6 @@ class _Progress:
             print(file=sys.stderr)
 
 
-def _excitation(compiled: CompiledScene, times: np.ndarray) -> np.ndarray:
-    n_h = compiled.plant.hydro_index.size
-    if compiled.excitation is None:
-        return np.zeros((times.size, n_h))
-    return np.ascontiguousarray(compiled.excitation.force(times).T)
-
-
 def _diverged(
     status: LoopStatus, step: int, compiled: CompiledScene, q: np.ndarray, v: np.ndarray
 ) -> SimulationDiverged:
@@ -137,7 +130,7 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     q = compiled.q0.copy()
     v = np.zeros(nv)
     command = np.zeros(n_pto)
-    exc0 = _excitation(compiled, np.zeros(1))[0]
+    exc0 = compiled.excitation_at(np.zeros(1))[0]
     a0, u0, x0, xd0, f0, _ = accelerations(p, q, v, exc0, r.newest, command)
     acc, acc_prev = a0.copy(), a0.copy()
     z = np.zeros(r.poles.size, dtype=complex)
@@ -180,10 +173,10 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
             command = loop.force(done * h, pto_now[0], pto_now[1], full_state)
         if rk4:
             times = (done + 0.5 * np.arange(2 * m + 1)) * h
-            status, at = rk4_chunk(p, r, _excitation(compiled, times), command, done, settings, state, out)
+            status, at = rk4_chunk(p, r, compiled.excitation_at(times), command, done, settings, state, out)
         else:
             times = (done + np.arange(m + 1)) * h
-            status, at = beeman_chunk(p, r, _excitation(compiled, times), command, done, settings, state, out)
+            status, at = beeman_chunk(p, r, compiled.excitation_at(times), command, done, settings, state, out)
         if status != LoopStatus.OK:
             raise _diverged(LoopStatus(status), at, compiled, q, v)
         if calm and np.max(np.abs(v)) > CALM_VELOCITY_LIMIT:
@@ -228,7 +221,7 @@ def run_reference(compiled: CompiledScene, progress: bool) -> Record:
         """The RK4 kernel's rates at (t, y): qd, a, zd, x, xd, f, rad; and the excitation."""
         q, v = y[:nq], y[nq : nq + nv]
         z = y[nq + nv : nq + nv + nz] + 1j * y[nq + nv + nz :]
-        exc = _excitation(compiled, np.array([t]))[0]
+        exc = compiled.excitation_at(np.array([t]))[0]
         return (*state_rates(p, r, q, v, z, exc, command), exc)
 
     def rates(t: float, y: np.ndarray) -> np.ndarray:

@@ -20,7 +20,7 @@ from ..attributes import apply_attrs
 from ..compiled import JIT, CompiledScene, hydro_velocity, poses
 from ..control import PowerBound, power_bound
 from ..hydro import split_dof
-from ..multibody import JointPTO, difference
+from ..multibody import difference
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 
 
@@ -97,13 +97,6 @@ def dof_kinds(compiled: CompiledScene) -> tuple[list[str], np.ndarray]:
     return list(model.velocity_names), np.array(angular, dtype=bool)
 
 
-def _rotary(compiled: CompiledScene) -> np.ndarray:
-    model = compiled.device.model
-    return np.array(
-        [isinstance(p, JointPTO) and model.joint(p.joint).kind == "revolute" for p in compiled.device.ptos], dtype=bool
-    )
-
-
 def _tangent(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
     """Generalised coordinates as velocity-space values (a free base: CoM position and rotation vector)."""
     model = compiled.device.model
@@ -175,7 +168,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     hydro_dofs = list(compiled.hydro.dofs)
     hydro_angular = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in hydro_dofs])
     pto_names = [p.name for p in compiled.device.ptos]
-    rotary = _rotary(compiled)
+    rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     data: dict[str, Any] = {}
     coords: dict[str, Any] = {}
     n_t = record.time.size
