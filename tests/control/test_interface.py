@@ -143,3 +143,15 @@ def test_the_device_limits_reach_the_context():
     np.testing.assert_array_equal(model.pto_damping, [0.0])
     np.testing.assert_array_equal(controller.context.linear_model(damping=6.0).pto_damping, [6.0])
     assert isinstance(LinearDamping(), Controller)
+
+
+def test_the_frequency_domain_says_it_does_not_apply_limits(tmp_path):
+    device = _limited_device(tmp_path, force_limit=0.05)
+    sc = scene(device, sea={"height": 0.04, "duration": 12.0, "ramp": 1.2}, solver={"method": "frequency"},
+               outputs={"variables": ["pto"]})  # fmt: skip
+    ds = simulate(sc)
+    reach = float(np.max(np.abs(ds.pto_torque.values))) / 0.05
+    assert (
+        ds.attrs["pto_limits"].startswith("not applied")
+        and f"{reach:.3g} and 0 of their limits" in ds.attrs["pto_limits"]
+    )

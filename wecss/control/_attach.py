@@ -84,11 +84,11 @@ def attach_controller(compiled: CompiledScene, controller: Controller) -> Compil
             "use 'linear' or a time-domain solver"
         )
     if gains is not None:
-        damping, stiffness = (np.broadcast_to(np.asarray(g, dtype=float), (context.n_pto,)) for g in gains)
         try:
+            damping, stiffness = (np.broadcast_to(np.asarray(g, dtype=float), (context.n_pto,)) for g in gains)
             compiled = with_linear_gains(compiled, damping, stiffness)
         except ValueError as err:
-            raise SceneError(f"controller {name}: {err}") from None
+            raise SceneError(f"controller {name}: linear_gains() gave {gains!r}: {err}") from None
     horizon = controller.preview_horizon
     if horizon is not None:
         periods = horizon / context.control_period

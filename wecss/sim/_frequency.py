@@ -14,7 +14,9 @@ from ._result import Record, window_statistics
 
 
 def run_frequency_domain(compiled: CompiledScene) -> Record:
-    """The steady state at every step (no ramp, no transient), from the database's A(omega) and B(omega).
+    """The steady state at every step (no ramp, no transient), from the database's A(omega) and B(omega). PTO
+    limits are not applied (the solution is linear); where the device declares them, the result's ``pto_limits``
+    attribute says how close the steady state comes to them.
 
     Raises
     ------
@@ -68,4 +70,12 @@ def run_frequency_domain(compiled: CompiledScene) -> Record:
         {"solver": "frequency (exact steady state from A(omega) and B(omega); no ramp, no transient)"},
     )
     record.run_time = _time.perf_counter() - start
+    limits = (p.pto_force_limit, p.pto_stroke_limit)
+    if np.any(np.isfinite(limits[0])) or np.any(np.isfinite(limits[1])):  # declared: say what they would do
+        control = pto_force + p.pto_spring * stroke
+        reached = [np.max(np.abs(v), axis=0) / lim for v, lim in ((control, limits[0]), (stroke, limits[1]))]
+        record.solver["pto_limits"] = (
+            "not applied (the frequency domain is linear): the largest force and stroke reach "
+            f"{np.max(reached[0]):.3g} and {np.max(reached[1]):.3g} of their limits"
+        )
     return record
