@@ -18,11 +18,13 @@ def test_info_of_a_device_prints_its_natural_periods(capsys: pytest.CaptureFixtu
     assert "zeta" in out
 
 
-def test_info_lists_the_shipped_databases(capsys: pytest.CaptureFixture[str]) -> None:
+def test_info_lists_the_devices_and_the_shipped_databases(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["info"]) == 0
     out = capsys.readouterr().out
     for name in ("m4-111", "m4-132", "m4-134", "notc-10kw"):
         assert f"[{name}]" in out
+    for device in ("m4-134", "rm3", "wavestar"):
+        assert f"\n  {device} " in out
 
 
 def test_unknown_target_is_an_error(capsys: pytest.CaptureFixture[str]) -> None:

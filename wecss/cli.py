@@ -22,14 +22,19 @@ from . import __version__
 
 
 def _info(target: str | None) -> int:
-    from . import hydro
+    from . import devices, hydro
 
     if target is None:
+        catalogue = devices.available()
+        print(f"wecss {__version__}: devices ({len(catalogue)}; `wecss info NAME` for one)\n")
+        for name in catalogue:
+            print(f"  {name:12s} {devices.load(name).description}")
+        print()
         names = hydro.available()
         if not names:
-            print("no shipped hydrodynamic databases found in", hydro._catalogue.DATA_DIR)
+            print("no shipped hydrodynamic databases found in", hydro.DATA_DIR)
             return 1
-        print(f"wecss {__version__}: shipped hydrodynamic databases ({len(names)})\n")
+        print(f"shipped hydrodynamic databases ({len(names)})\n")
         for name in names:
             start = time.perf_counter()
             data = hydro.load(name)
@@ -38,8 +43,6 @@ def _info(target: str | None) -> int:
             print(data.summary())
             print()
         return 0
-    from . import devices
-
     path = Path(target)
     if path.suffix == ".nc" and path.is_file() and _is_result(path):
         from .results import open_result

@@ -56,6 +56,12 @@ def test_times_in_seconds_or_relative_to_the_period(value, seconds):
         ({"outputs": {"variables": "pto"}}, "outputs.variables must be a list"),
         ({"outputs": {"statistics_only": "false"}}, "outputs.statistics_only must be bool"),
         ({"controller": {"parameters": [1, 2]}}, "controller.parameters must be dict"),
+        ({"outputs": {"every": 100000}}, "outputs.every = 100000 keeps 1 of the run's"),
+        ({"solver": {"dt": "Tp/3"}}, "steps per period of the shortest wave component"),
+        ({"sea": {"kind": "regular", "period": 1.2}, "solver": {"dt": "Tp"}}, "gives 1 steps per period"),
+        ({"outputs": {"window": 1e-4}}, "leaves 0 steps for the statistics; it needs at least 2"),
+        ({"sea": {"duration": "1e9 Tp"}}, "steps (at most 1e+09); at 50 us per step that is"),
+        ({"sea": {"duration": "1e6 Tp"}, "outputs": {"every": 1}}, "2e+08 saved steps would take about 400 GB"),
     ],
 )
 def test_bad_scenes_fail_with_clear_messages(sections, message):
@@ -144,3 +150,10 @@ def test_linear_and_frequency_solvers_refuse_what_they_cannot_use(sections, mess
     with pytest.raises(SceneError) as info:
         scene(**sections)
     assert message in str(info.value)
+
+
+def test_a_coarse_step_is_noted_in_the_result():
+    """A regular wave at 10 steps per period runs, and the result's notes say the step is coarse."""
+    sc = scene(sea={"kind": "regular", "height": 0.01, "period": 1.2, "duration": "5 T", "ramp": 0.0},
+               solver={"dt": "T/10"})  # fmt: skip
+    assert "with 10 steps per period; 20 or more are recommended" in simulate(sc).attrs["notes"]

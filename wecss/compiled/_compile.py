@@ -244,6 +244,37 @@ def make_radiation(
     return (*from_state_space(fit.model, dt), fit)
 
 
+MIN_STEPS_PER_PERIOD: int = 4
+"""Fewest solver steps per period of the shortest wave component a scene may ask for (fewer do not resolve it)."""
+
+GOOD_STEPS_PER_PERIOD: int = 20
+"""Fewer solver steps than this per period of the shortest wave component are allowed but noted in the result."""
+
+
+def check_step(dt: float, waves: wv.WaveComponents) -> list[str]:
+    """Notes on the step ``dt`` [s] against the shortest wave component (empty when it is fine).
+
+    Raises
+    ------
+    SceneError
+        For fewer than MIN_STEPS_PER_PERIOD steps per period of the shortest component.
+    """
+    shortest = 2 * np.pi / float(np.max(waves.omega))
+    steps = shortest / dt
+    if steps < MIN_STEPS_PER_PERIOD:
+        raise SceneError(
+            f"solver.dt ({dt:.4g} s) gives {steps:.3g} steps per period of the shortest wave component "
+            f"({shortest:.4g} s); at least {MIN_STEPS_PER_PERIOD} are needed ({GOOD_STEPS_PER_PERIOD} or more "
+            "recommended): give a smaller solver.dt, such as 'Tp/200'"
+        )
+    if steps < GOOD_STEPS_PER_PERIOD:
+        return [
+            f"solver.dt ({dt:.4g} s) resolves the shortest wave component ({shortest:.4g} s) with {steps:.3g} steps "
+            f"per period; {GOOD_STEPS_PER_PERIOD} or more are recommended"
+        ]
+    return []
+
+
 def fit_request(scene: Scene, hydro: HydroData) -> tuple[FitSettings, tuple[float, float] | None]:
     """The fit settings (with the scene's coupling threshold) and band [rad/s] a scene's state-space radiation
     asks for."""
@@ -286,6 +317,7 @@ def compile_plant(scene: Scene) -> CompiledScene:
     waves, spectrum = make_waves(scene, hydro)
     excitation = None
     if waves is not None:
+        notes.extend(check_step(dt, waves))
         if waves.dropped is not None and waves.dropped.count:
             notes.append(f"wave components: {waves.dropped}")
         ramp = wv.Ramp(scene.sea.ramp_s) if scene.sea.ramp_s > 0 else None

@@ -3,6 +3,7 @@ package and third-party packages register theirs (wecss itself never imports a p
 
 from __future__ import annotations
 
+import inspect
 from importlib.metadata import entry_points
 from typing import Any
 
@@ -28,7 +29,16 @@ def create(name: str, **parameters: Any) -> Controller:
     """
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name == name:
-            controller = ep.load()(**parameters)
+            cls = ep.load()
+            try:
+                controller = cls(**parameters)
+            except TypeError as err:  # a typo in a parameter: say which ones the controller takes
+                accepted = [
+                    f"{p.name}" + ("" if p.default is inspect.Parameter.empty else f" (default {p.default!r})")
+                    for p in inspect.signature(cls).parameters.values()
+                    if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)
+                ]
+                raise TypeError(f"{err}; {name!r} accepts: {', '.join(accepted) or 'no parameters'}") from None
             check_controller(controller)
             return controller
     raise ValueError(f"unknown controller {name!r}; available: {', '.join(available()) or 'none'}")

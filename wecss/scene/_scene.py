@@ -43,6 +43,17 @@ OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses
 DEFAULT_OUTPUTS = ("motion", "pto", "excitation", "elevation", "poses")
 
 
+MAX_STEPS: float = 1e9
+"""Most steps a scene may ask for."""
+
+BYTES_PER_SAVED_STEP: int = 2000
+"""Estimate of the memory one saved step takes: 1.8 GB were measured for 10^6 saved steps of m4-134 (the
+integrator's store and the Dataset)."""
+
+MAX_SAVED_BYTES: float = 8e9
+"""Most memory the saved time series of a scene may take (estimated; this machine class has 24 GiB)."""
+
+
 class SceneError(ValueError):
     """A scene is malformed; the message says which field, what was received and what is accepted."""
 
@@ -398,6 +409,7 @@ class Scene:
         dt = self.dt
         if dt >= self.sea.duration_s:
             raise SceneError(f"solver.dt ({dt:.4g} s) must be shorter than sea.duration ({self.sea.duration_s:.4g} s)")
+        self._check_size()
         self.control_steps  # noqa: B018 (validates controller.dt)
         if self.solver.method in ("rk4", "reference") and self.radiation.method == "convolution":
             raise SceneError(
@@ -409,6 +421,38 @@ class Scene:
             raise SceneError(
                 "solver.method 'linear' needs radiation.method 'state_space' (the linear model carries the radiation "
                 f"memory as states); got {self.radiation.method!r}"
+            )
+
+    def _check_size(self) -> None:
+        """Refuse runs that keep fewer than two saved steps or a statistics window of fewer than two steps, and runs
+        too long or too large to hold (with an estimate)."""
+        n = self.sea.duration_s / self.dt
+        if n > MAX_STEPS:
+            raise SceneError(
+                f"sea.duration / solver.dt gives {n:.3g} steps (at most {MAX_STEPS:.0e}); at 50 us per step that is "
+                f"{n * 50e-6 / 3600:.3g} hours: shorten sea.duration or lengthen solver.dt"
+            )
+        steps = self.n_steps
+        outputs = self.outputs
+        window = round(outputs.window * steps)
+        if window < 2:
+            raise SceneError(
+                f"outputs.window = {outputs.window!r} of {steps} steps leaves {window} steps for the statistics; it "
+                "needs at least 2"
+            )
+        if outputs.statistics_only:
+            return
+        saved = steps // outputs.every + 1
+        if saved < 2:
+            raise SceneError(
+                f"outputs.every = {outputs.every} keeps {saved} of the run's {steps + 1} steps; at least 2 are needed "
+                f"(every <= {steps})"
+            )
+        size = saved * BYTES_PER_SAVED_STEP
+        if size > MAX_SAVED_BYTES:
+            raise SceneError(
+                f"{saved:.3g} saved steps would take about {size / 1e9:.3g} GB (at {BYTES_PER_SAVED_STEP} bytes per "
+                f"step; at most {MAX_SAVED_BYTES / 1e9:.0f} GB): raise outputs.every or set outputs.statistics_only"
             )
 
     @property
