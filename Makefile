@@ -38,6 +38,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/radiation_fits.py --quick
 	$(PY) studies/bench_radiation.py --quick
 	$(PY) studies/bench_simulator.py --quick
+	$(PY) studies/wecccomp.py --quick
 	$(PY) studies/linear_vs_nonlinear.py --quick
 	$(PY) studies/control_example.py --quick
 	$(PY) studies/control_table.py --quick

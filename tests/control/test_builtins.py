@@ -15,8 +15,12 @@ PARAMETERS = {
     "spring-damper": {"damping": 6.0, "stiffness": -0.5},
     "optimal-damping": {},
     "reactive": {},
+    "mpc": {"horizon": 20},
 }
 """Parameters of each built-in for these runs (its defaults where empty)."""
+
+CONTROL_PERIOD = {"mpc": 0.06}
+"""Control periods [s] of the built-ins that plan ahead (the others: every solver step)."""
 
 
 def test_every_registered_controller_has_test_parameters():
@@ -29,7 +33,8 @@ def test_each_controller_absorbs_power_in_both_simulators(name, method):
     sc = scene(
         "m4-111",
         sea={"height": 0.02, "duration": 24.0, "ramp": 2.4},
-        controller={"name": name, "parameters": PARAMETERS[name]},
+        controller={"name": name, "parameters": PARAMETERS[name]}
+        | ({"dt": CONTROL_PERIOD[name]} if name in CONTROL_PERIOD else {}),
         solver={"method": method},
         radiation={"method": "state_space"},
         outputs={"variables": ["pto"]},

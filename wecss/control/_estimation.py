@@ -178,12 +178,9 @@ class ExcitationEstimator:
             raise ValueError(f"n_frequencies must be >= 1 and the waves must carry energy; got {n_frequencies!r}")
         quantiles = (np.arange(n_frequencies) + 0.5) / n_frequencies * weights[-1]
         frequencies = np.interp(quantiles, weights, omega)
-        h = model.with_pto_gains().frequency_response(omega)  # (n_w, nv, n_h)
-        xi = np.einsum("wvj,jw->vw", h, np.asarray(coefficients, dtype=complex))
-        strokes = model.pto_jacobian @ xi
-        rms = np.sqrt(0.5 * np.concatenate([np.sum(np.abs(strokes) ** 2, 1), np.sum(np.abs(omega * strokes) ** 2, 1)]))
         if not relative_noise > 0:
             raise ValueError(f"relative_noise must be positive; got {relative_noise!r}")
+        rms = measured_rms(model, omega, coefficients)
         return cls(model, dt, frequencies, variance, relative_noise * rms, damping_ratio=damping_ratio)
 
     def reset(self) -> None:
@@ -191,15 +188,22 @@ class ExcitationEstimator:
         self.x[:] = 0.0
         self._force[:] = 0.0
 
-    def update(self, stroke: np.ndarray, rate: np.ndarray, force: np.ndarray) -> np.ndarray:
-        """One control period: predict over it with the PTO force ``force`` [N or N m] held since the last update,
-        then correct with the measured PTO strokes (from their rest positions) and rates; returns the estimated
-        excitation components (n_d,) now [N or N m]. The next call takes the force applied from now on."""
+    def update(self, stroke: np.ndarray, rate: np.ndarray, force: np.ndarray | None) -> np.ndarray:
+        """One control period: predict over it with the PTO force held since the last update, then correct with
+        the measured PTO strokes (from their rest positions) and rates; returns the estimated excitation
+        components (n_d,) now [N or N m]. ``force`` [N or N m] is the force applied from now on (None: give it
+        with :meth:`hold` once known)."""
         predicted = self.phi @ self.x + self.gamma @ self._force
         measured = np.concatenate([np.asarray(stroke, dtype=float) - self.stroke0, np.asarray(rate, dtype=float)])
         self.x = predicted + self.gain @ (measured - self.measure @ predicted)
-        self._force = np.asarray(force, dtype=float).copy()
+        if force is not None:
+            self.hold(force)
         return self.excitation
+
+    def hold(self, force: np.ndarray) -> None:
+        """The PTO force [N or N m] applied from now until the next :meth:`update` (for a controller that
+        computes its force from this update's estimate)."""
+        self._force = np.asarray(force, dtype=float).copy()
 
     @property
     def excitation(self) -> np.ndarray:
@@ -217,3 +221,14 @@ def pto_referred(model: LinearModel, generalised: np.ndarray) -> np.ndarray:
     (nv, ...) [N or N m]: the PTO forces that would give the PTO coordinates the same acceleration."""
     g, minv = model.pto_jacobian, np.linalg.inv(model.mass)
     return np.linalg.solve(g @ minv @ g.T, g @ minv @ generalised)
+
+
+def measured_rms(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
+    """RMS of the PTO strokes, then of their rates (2 n_pto,) [m or rad; m/s or rad/s], of ``model`` without
+    PTO gains in the waves ``omega`` [rad/s], ``coefficients`` (n_h, n_w) [N or N m], from the exact frequency
+    response."""
+    omega = np.asarray(omega, dtype=float)
+    h = model.with_pto_gains().frequency_response(omega)  # (n_w, nv, n_h)
+    xi = np.einsum("wvj,jw->vw", h, np.asarray(coefficients, dtype=complex))
+    strokes = model.pto_jacobian @ xi
+    return np.sqrt(0.5 * np.concatenate([np.sum(np.abs(strokes) ** 2, 1), np.sum(np.abs(omega * strokes) ** 2, 1)]))

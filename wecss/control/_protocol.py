@@ -7,7 +7,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -171,3 +171,8 @@ class Controller(ABC):
         """(damping, stiffness) per PTO [N s/m or N m s/rad; N/m or N m/rad] when the controller is the linear
         feedback f = -c x_dot - k x (valid after :meth:`setup`), else None (the default)."""
         return None
+
+    def report(self) -> dict[str, Any]:
+        """What the controller has to say about its last run (numbers or short texts by name; empty by default).
+        The result keeps each as the attribute ``controller_<name>`` and lists them in its notes."""
+        return {}

@@ -10,6 +10,7 @@ from ._model import HydroResponse as HydroResponse
 from ._model import LinearModel as LinearModel
 from ._model import NoStateSpace as NoStateSpace
 from ._model import equilibrium_maps as equilibrium_maps
+from ._model import exact_step as exact_step
 from ._model import linearize as linearize
 from ._modes import format_modal_table as format_modal_table
 from ._modes import modal_table as modal_table

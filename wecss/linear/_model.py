@@ -318,17 +318,24 @@ class LinearModel:
         return cache[float(dt), hold]
 
     def _discretise(self, dt: float, hold: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        a, b = np.asarray(self.state_space.A), np.asarray(self.state_space.B)
-        n, m = b.shape
-        block = np.zeros((n + 2 * m, n + 2 * m))
-        block[:n, :n] = a * dt
-        block[:n, n : n + m] = b * dt
-        block[n : n + m, n + m :] = np.eye(m)
-        e = expm(block)
-        phi, theta1, theta2 = e[:n, :n], e[:n, n : n + m], e[:n, n + m :]
+        phi, now, after = exact_step(np.asarray(self.state_space.A), np.asarray(self.state_space.B), dt)
         if hold == "zoh":
-            return phi, theta1, np.zeros_like(theta1)
-        return phi, theta1 - theta2, theta2
+            return phi, now + after, np.zeros_like(now)
+        return phi, now, after
+
+
+def exact_step(a: np.ndarray, b: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Exact step of x' = a x + b u over ``dt`` [s] with u linear in time between its samples (first-order
+    hold): x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1}; with u held, the input matrix is G0 + G1. From the matrix
+    exponential of the augmented system."""
+    n, m = b.shape
+    block = np.zeros((n + 2 * m, n + 2 * m))
+    block[:n, :n] = a * dt
+    block[:n, n : n + m] = b * dt
+    block[n : n + m, n + m :] = np.eye(m)
+    e = expm(block)
+    phi, theta1, theta2 = e[:n, :n], e[:n, n : n + m], e[:n, n + m :]
+    return phi, theta1 - theta2, theta2
 
 
 def _radiation_model(compiled: CompiledScene) -> RadiationStateSpace | None:

@@ -210,3 +210,80 @@ def spectral_moments(
             w = np.where(omega > 0, omega, np.inf) ** n if n < 0 else omega**n
         out[n] = float(np.sum(w * spectrum) * d_omega)
     return out
+
+
+def wecccomp_score(
+    ds: xr.Dataset,
+    *,
+    force_max: float = 60.0,
+    stroke_max: float = 0.08,
+    efficiency: float = 0.7,
+    start: float = 25.0,
+    pto: str | None = None,
+) -> dict[str, float]:
+    """The WEC Control Competition's evaluation criterion of one run and one linear PTO (the Wavestar's motor):
+
+        EC = mean(P_elec) / (2 + |f|98 / F_max + |z|98 / Z_max - mean|P_elec| / |P_elec|98)
+
+    with P_elec = efficiency P_abs when absorbing and P_abs / efficiency when supplying, |x|98 the 98th
+    percentile of |x|, f the PTO force and z the stroke from its value at the run's start (the static
+    equilibrium), over the saved steps from ``start`` [s] on (the competition discards the first 25 s).
+
+    Parameters
+    ----------
+    ds : Dataset
+        A result with the "pto" outputs of a device with a linear PTO.
+    force_max, stroke_max : float
+        F_max [N] and Z_max [m] (the Wavestar motor's: 60 N, 0.08 m).
+    efficiency : float
+        Conversion efficiency in (0, 1] (the competition's 0.7).
+    start : float
+        Start of the scored part [s].
+    pto : str or None
+        The PTO (default: the only linear one).
+
+    Returns
+    -------
+    dict
+        ``ec`` [W], ``mean_electrical_power`` and ``mean_absorbed_power`` [W], ``force_98`` [N], ``stroke_98``
+        [m].
+
+    Raises
+    ------
+    ValueError
+        Without the time series needed, with no linear PTO or several and no ``pto``, or bad settings.
+    """
+    if not 0 < efficiency <= 1:
+        raise ValueError(f"efficiency must lie in (0, 1]; got {efficiency!r}")
+    if not (force_max > 0 and stroke_max > 0):
+        raise ValueError(f"force_max and stroke_max must be positive; got {force_max!r}, {stroke_max!r}")
+    needed = ("pto_power", "pto_force", "pto_displacement")
+    if any(name not in ds for name in needed):
+        raise ValueError(f"the result needs {', '.join(needed)} (a linear PTO and the 'pto' outputs)")
+    names = [str(n) for n in ds.linear_pto.values]
+    if pto is None:
+        if len(names) != 1:
+            raise ValueError(f"the device has linear PTOs {names}: say which with pto=")
+        pto = names[0]
+    if pto not in names:
+        raise ValueError(f"pto {pto!r} is not a linear PTO of the result; linear PTOs: {names}")
+    t = ds.time.values
+    if not t[0] <= start < t[-1]:
+        raise ValueError(f"start ({start!r} s) must lie within the run ({t[0]:.4g}-{t[-1]:.4g} s)")
+    stroke = ds.pto_displacement.sel(linear_pto=pto).values
+    stroke = stroke - stroke[0]
+    keep = t >= start
+    power = ds.pto_power.sel(pto=pto).values[keep]
+    electrical = np.where(power >= 0, efficiency * power, power / efficiency)
+    force = np.percentile(np.abs(ds.pto_force.sel(linear_pto=pto).values[keep]), 98)
+    travel = np.percentile(np.abs(stroke[keep]), 98)
+    peak = np.percentile(np.abs(electrical), 98)
+    mean = float(np.mean(electrical))
+    ratio = float(np.mean(np.abs(electrical)) / peak) if peak > 0 else 0.0
+    return {
+        "ec": mean / (2 + force / force_max + travel / stroke_max - ratio),
+        "mean_electrical_power": mean,
+        "mean_absorbed_power": float(np.mean(power)),
+        "force_98": float(force),
+        "stroke_98": float(travel),
+    }

@@ -148,7 +148,7 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
     return out
 
 
-def _notes(compiled: CompiledScene) -> list[str]:
+def _notes(compiled: CompiledScene, report: dict[str, Any]) -> list[str]:
     notes = list(compiled.notes)
     if compiled.device.ptos and not compiled.linear_controller:
         steps = compiled.scene.control_steps
@@ -156,6 +156,11 @@ def _notes(compiled: CompiledScene) -> list[str]:
             "controller force held constant over each step (zero-order hold at the simulation step)"
             if steps == 1
             else f"controller called every {steps} steps ({steps * compiled.dt:.6g} s), its force held in between"
+        )
+    if report:
+        notes.append(
+            "controller: "
+            + ", ".join(f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in report.items())
         )
     return notes
 
@@ -248,6 +253,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         if any(dim in v[0] for v in data.values()):
             coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
     n_steps = compiled.n_steps
+    report = compiled.controller.report() if compiled.device.ptos else {}
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {compiled.device.name}",
         "wecss_version": __version__,
@@ -267,10 +273,11 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "run_time_s": record.run_time,
         "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
         "seed": scene.sea.seed,
-        "notes": "; ".join(_notes(compiled)) or "none",
+        "notes": "; ".join(_notes(compiled, report)) or "none",
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
     }
+    attrs.update({f"controller_{k}": v for k, v in report.items()})
     attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)
     attrs.update(sea_state_attrs(compiled))
     if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:

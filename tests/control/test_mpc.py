@@ -1,0 +1,178 @@
+"""Model predictive control (issue 14): it reaches the complex-conjugate bound's closed form as its horizon grows,
+its limits hold in every step, its two solver paths give the same forces, and a failed solve falls back and is
+counted."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from controllers import MPC
+from tests.sim.scenes import scene
+from wecss.control import CvxpyPath, OsqpPath, compile_scene
+from wecss.control._qp_solvers import Solution
+from wecss.sim import Scene, simulate
+
+FLOAT = Path(__file__).with_name("heaving_float.toml")  # the M4 stern float on a vertical slider
+M4_111 = Path(__file__).parents[2] / "wecss" / "data" / "devices" / "m4-111.toml"
+PERIOD = 1.0
+
+
+def _float_scene(parameters: dict) -> Scene:
+    return Scene.from_dict(
+        {
+            "device": {"name": str(FLOAT)},
+            "sea": {"kind": "regular", "height": 0.01, "period": PERIOD, "duration": "60 T", "ramp": "5 T"},
+            "controller": {"name": "mpc", "dt": 0.05, "parameters": parameters},
+            "solver": {"method": "linear"},
+            "radiation": {"method": "state_space"},
+            "outputs": {"variables": ["pto"], "window": 0.5},
+        }
+    )
+
+
+def test_with_a_longer_horizon_mpc_reaches_the_complex_conjugate_bound():
+    """Regular wave, no limits, perfect preview: |F|^2 / (8 B) from the database (not from the control code)
+    within 1 % at a horizon of 40 periods (2 s); clearly below it at 5 (0.25 s)."""
+    compiled = compile_scene(_float_scene({"preview": "perfect"}))
+    hydro, omega = compiled.hydro, 2 * np.pi / PERIOD
+    k = list(hydro.dofs).index("float_3__Heave")
+    b = np.interp(omega, hydro.omega, hydro.dataset.radiation_damping.values[:, k, k])
+    bound = abs(compiled.excitation.coefficients[k, 0]) ** 2 / (8 * b)
+    power = {
+        n: float(simulate(_float_scene({"preview": "perfect", "horizon": n, "force_penalty": 1e-3})).mean_pto_power[0])
+        for n in (5, 40)
+    }
+    assert power[40] == pytest.approx(bound, rel=0.01)
+    assert power[5] < 0.7 * bound
+
+
+def _limited_m4_111(tmp_path: Path, **limits: float) -> str:
+    path = tmp_path / "m4-111-limited.toml"
+    path.write_text(M4_111.read_text().rstrip() + "\n" + "".join(f"{k} = {v}\n" for k, v in limits.items()))
+    return str(path)
+
+
+@pytest.mark.parametrize("preview", ["perfect", "causal"])
+def test_the_force_limit_holds_exactly_and_the_stroke_within_its_slack(tmp_path, preview):
+    """m4-111 in the linear simulator with a torque limit of 1 N m and a stroke limit of 0.08 rad (the free MPC
+    run reaches 3.4 N m and 0.14 rad): the torque never passes its limit, and at the control instants the stroke
+    stays within the limit plus the largest slack the programme used, up to 5 % of the limit for the prediction's
+    error (estimation, the excitation's interpolation)."""
+    force, stroke = 1.0, 0.08
+    device = _limited_m4_111(tmp_path, force_limit=force, stroke_limit=stroke, end_stop_stiffness=50.0)
+    control = {"name": "mpc", "dt": 0.06, "parameters": {"preview": preview, "horizon": 20}}
+    kw = {"solver": {"method": "linear"}, "radiation": {"method": "state_space"}, "outputs": {"variables": ["pto"]}}
+    sea = {"height": 0.02, "duration": 30.0, "ramp": 2.4}
+    ds = simulate(scene(device, sea=sea, controller=control, **kw))
+    assert np.max(np.abs(ds.pto_torque.values)) <= force
+    slack = float(ds.attrs["controller_largest_stroke_slack"])
+    at_control = ds.pto_angle.values[:: round(0.06 / ds.attrs["time_step"]), 0]
+    assert np.max(np.abs(at_control)) <= stroke * (1 + slack + 0.05)
+    assert ds.attrs["controller_fallbacks"] == 0
+    unlimited = {"name": "mpc", "dt": 0.06, "parameters": {"preview": "perfect", "horizon": 20}}
+    free = simulate(scene("m4-111", sea=sea, controller=unlimited, **kw))
+    assert np.max(np.abs(free.pto_angle.values)) > 1.5 * stroke  # the limits bind
+    assert np.max(np.abs(free.pto_torque.values)) > 1.5 * force
+
+
+class _RecordingPath:
+    """The controller's own solver path, keeping every programme it was given and its solution."""
+
+    def __init__(self, inner: OsqpPath) -> None:
+        self.inner, self.given, self.solutions = inner, [], []
+
+    def solve(self, q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Solution:
+        solution = self.inner.solve(q, lower, upper)
+        self.given.append((q.copy(), lower.copy(), upper.copy()))
+        self.solutions.append(solution)
+        return solution
+
+
+class _RecordingMPC(MPC):
+    def setup(self, context):  # type: ignore[no-untyped-def]
+        super().setup(context)
+        self.path = _RecordingPath(self.path)  # type: ignore[arg-type]
+
+
+def test_direct_osqp_and_cvxpy_give_the_same_forces(tmp_path):
+    """The programmes of a run on m4-111 with its limits binding (torque 1 N m, stroke 0.08 rad, rate 20 N m/s):
+    OSQP directly, cvxpy with OSQP and cvxpy with Clarabel (an interior-point method: an independent solver) plan
+    the same forces to 5e-4 of the force limit; and whole runs with either path agree to 1e-3 of it."""
+    device = _limited_m4_111(tmp_path, force_limit=1.0, stroke_limit=0.08, end_stop_stiffness=50.0)
+    kw = {"solver": {"method": "linear"}, "radiation": {"method": "state_space"}, "outputs": {"variables": ["pto"]}}
+    sea = {"height": 0.02, "duration": 12.0, "ramp": 1.2}
+    controller = _RecordingMPC(preview="perfect", horizon=15, rate_limit=20.0)
+    simulate(scene(device, sea=sea, controller={"name": "mpc", "dt": 0.06}, **kw), controller=controller)
+    recorded = controller.path
+    assert isinstance(recorded, _RecordingPath)
+    qp = controller.qp
+    others = [CvxpyPath(qp), CvxpyPath(qp, solver="CLARABEL")]
+    bound = 0
+    for given, solution in list(zip(recorded.given, recorded.solutions, strict=True))[::4]:
+        assert solution.x is not None, solution.status
+        planned = qp.forces(solution.x)
+        bound += int(np.any(np.abs(np.abs(planned) - 1.0) < 1e-6))
+        for other in others:
+            again = other.solve(*given)
+            assert again.x is not None, again.status
+            # OSQP (ADMM) stops on its residuals (1e-7): its forces are within 4e-4 N m of Clarabel's here
+            np.testing.assert_allclose(qp.forces(again.x), planned, atol=5e-4)
+    assert bound >= 3  # some of the compared programmes sit on the torque limit
+    run = {}
+    for solver in ("osqp", "cvxpy"):
+        control = {"name": "mpc", "dt": 0.06, "parameters": {"preview": "perfect", "horizon": 10, "solver": solver}}
+        run[solver] = simulate(scene(device, sea={**sea, "duration": 6.0}, controller=control, **kw))
+    np.testing.assert_allclose(run["cvxpy"].pto_torque.values, run["osqp"].pto_torque.values, atol=1e-3)
+
+
+class _FailingPath:
+    """A solver path whose every third solve fails (as an infeasible or unsolved programme would)."""
+
+    def __init__(self, inner: OsqpPath) -> None:
+        self.inner, self.calls, self.failed = inner, 0, 0
+
+    def solve(self, q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Solution:
+        self.calls += 1
+        if self.calls % 3 == 0:
+            self.failed += 1
+            return Solution(None, "infeasible (forced by the test)", 0.0)
+        return self.inner.solve(q, lower, upper)
+
+
+class _FailingMPC(MPC):
+    def setup(self, context):  # type: ignore[no-untyped-def]
+        super().setup(context)
+        self.path = _FailingPath(self.path)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("method", ["linear", "beeman"])
+def test_a_failed_solve_falls_back_and_is_counted(method):
+    """Every third solve fails: the run goes on with the last plan, counts each fallback, and still absorbs
+    power."""
+    controller = _FailingMPC(preview="perfect", horizon=15)
+    sc = scene("m4-111", sea={"height": 0.02, "duration": 6.0, "ramp": 1.2},
+               controller={"name": "mpc", "dt": 0.06}, solver={"method": method},
+               radiation={"method": "state_space"}, outputs={"variables": ["pto"]})  # fmt: skip
+    ds = simulate(sc, controller=controller)
+    assert isinstance(controller.path, _FailingPath)
+    assert controller.path.failed >= 30
+    assert ds.attrs["controller_fallbacks"] == controller.path.failed
+    assert "fallbacks = " in ds.attrs["notes"]
+    assert float(ds.mean_pto_power[0]) > 0
+
+
+def test_bad_parameters_are_refused_with_what_is_accepted():
+    for kwargs, message in (
+        ({"horizon": 0}, "horizon must be a whole number"),
+        ({"preview": "oracle"}, "preview must be one of"),
+        ({"efficiency": 1.5}, r"efficiency must lie in \(0, 1\]"),
+        ({"solver": "gurobi"}, "solver must be one of"),
+        ({"rate_limit": -1.0}, "rate_limit must be positive"),
+    ):
+        with pytest.raises(ValueError, match=message):
+            MPC(**kwargs)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"radiation\.method = 'state_space'"):
+        simulate(scene("m4-111", controller={"name": "mpc", "dt": 0.06}, radiation={"method": "convolution"}))

@@ -1,0 +1,207 @@
+"""The quadratic programme of power-maximising model predictive control, built once per run; only its linear
+term and its bounds change from one control step to the next.
+
+With the forces f_k held over each period, the work the PTOs do on the device over period k is exactly
+f_k . (s_{k+1} - s_k) (zero-order hold; s the strokes), so the energy absorbed over the horizon is
+
+    E = -sum_k f_k . (s_{k+1} - s_k) = -(f' L f + f' a(x_0, d)),
+
+quadratic in the forces through the prediction model (``HorizonModel``; L and a below). For a passive plant at
+rest the PTOs cannot take energy out by their own forcing, so L + L' is positive semidefinite; a force penalty
+T sum_k f_k' R f_k (PTO losses, and strict convexity) is added, and where a fit that is not quite passive makes
+L + L' indefinite, the smallest diagonal shift that makes the Hessian positive semidefinite is added as well
+(reported as ``convexity_shift``). The programme minimises
+
+    (f' L f + f' a + T sum_k f_k' R f_k + E_ref sum_i (w1 e_i + w2 e_i^2)) / E_ref
+
+over f and stroke slacks e_i >= 0 (one per PTO with a stroke limit, relative to the limit), with the force limit
+hard (|f| <= F_max), the stroke limit soft (|s_k + s_eq| <= Z_max (1 + e)) and an optional rate limit
+(|f_k - f_{k-1}| <= R_max T, f_{-1} the force applied now). Variables are scaled: u = f / f_ref per PTO, and the
+objective is divided by the reference energy E_ref, so that OSQP's tolerances mean the same on every device.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ._horizon import HorizonModel
+
+
+@dataclass(frozen=True)
+class PowerQP:
+    """The programme's fixed data (module docstring): ``hessian`` P and ``constraints`` A (scipy sparse, CSC)
+    of min 0.5 z' P z + q' z subject to l <= A z <= u, over z = (u_0 ... u_{N-1}, e); :meth:`vectors` gives q,
+    l and u for a state, a disturbance and the force applied now.
+
+    Attributes
+    ----------
+    force_scale : ndarray (n_pto,)
+        f_ref [N or N m].
+    energy_scale : float
+        E_ref [J].
+    convexity_shift : float
+        Diagonal shift added to the scaled Hessian (0 for a passive plant).
+    slack_pto : ndarray of int
+        The PTOs with a stroke limit (one slack each).
+    """
+
+    horizon: HorizonModel
+    hessian: sp.csc_matrix
+    constraints: sp.csc_matrix
+    force_scale: np.ndarray
+    energy_scale: float
+    convexity_shift: float
+    slack_pto: np.ndarray
+    slack_weights: tuple[float, float]
+    force_limit: np.ndarray
+    stroke_limit: np.ndarray
+    stroke_at_equilibrium: np.ndarray
+    rate_limit: np.ndarray | None
+    _difference: np.ndarray
+    _first_stroke: np.ndarray
+    _force_rows: np.ndarray
+
+    @classmethod
+    def build(
+        cls,
+        horizon: HorizonModel,
+        *,
+        force_limit: np.ndarray,
+        stroke_limit: np.ndarray,
+        stroke_at_equilibrium: np.ndarray,
+        force_penalty: np.ndarray,
+        force_scale: np.ndarray,
+        energy_scale: float,
+        rate_limit: np.ndarray | None = None,
+        slack_weights: tuple[float, float] = (1e2, 1e3),
+    ) -> PowerQP:
+        """The programme for PTO limits ``force_limit`` [N or N m], ``stroke_limit`` (from rest) [m or rad] and
+        ``rate_limit`` [N/s or N m/s] (inf or None: none), the strokes at the equilibrium (from rest), the force
+        penalty R per PTO [1/(N s/m) or 1/(N m s/rad): W per N^2], the scales f_ref and E_ref, and the slack
+        weights (w1, w2) [-].
+
+        Raises
+        ------
+        ValueError
+            On non-positive scales, negative penalties or limits, or shapes that disagree.
+        """
+        n_pto, steps, period = horizon.n_pto, horizon.steps, horizon.period
+        arrays = {}
+        for label, value in (
+            ("force_limit", force_limit),
+            ("stroke_limit", stroke_limit),
+            ("stroke_at_equilibrium", stroke_at_equilibrium),
+            ("force_penalty", force_penalty),
+            ("force_scale", force_scale),
+        ):
+            array = np.broadcast_to(np.asarray(value, dtype=float), (n_pto,)).copy()
+            if label != "stroke_at_equilibrium" and not np.all(array >= 0):
+                raise ValueError(f"{label} must be >= 0; got {array.tolist()}")
+            arrays[label] = array
+        rate = None if rate_limit is None else np.broadcast_to(np.asarray(rate_limit, dtype=float), (n_pto,)).copy()
+        if rate is not None and not np.all(rate > 0):
+            raise ValueError(f"rate_limit must be positive [N/s or N m/s]; got {rate.tolist()}")
+        fs = arrays["force_scale"]
+        if not (np.all(fs > 0) and np.all(np.isfinite(fs)) and energy_scale > 0 and np.isfinite(energy_scale)):
+            raise ValueError(f"force_scale and energy_scale must be positive and finite; got {fs}, {energy_scale}")
+        if not (len(slack_weights) == 2 and min(slack_weights) > 0):
+            raise ValueError(f"slack_weights must be two positive numbers; got {slack_weights!r}")
+        # stroke differences s_{k+1} - s_k = difference @ (s_1 ... s_N) - first @ s_0
+        m = steps * n_pto
+        difference = np.eye(m) - np.eye(m, k=-n_pto)
+        first = np.zeros((m, n_pto))
+        first[:n_pto] = np.eye(n_pto)
+        scale = np.tile(fs, steps)
+        lmat = difference @ horizon.from_force * scale[None, :] * scale[:, None] / energy_scale
+        hessian = (
+            lmat + lmat.T + np.diag(2 * period * np.tile(arrays["force_penalty"], steps) * scale**2 / energy_scale)
+        )
+        lowest = float(np.linalg.eigvalsh(0.5 * (hessian + hessian.T))[0])
+        floor = 1e-9 * float(np.max(np.abs(np.diag(hessian))))
+        shift = floor - lowest if lowest < floor else 0.0
+        hessian = hessian + shift * np.eye(m)
+        slack_pto = np.flatnonzero(np.isfinite(arrays["stroke_limit"]))
+        n_e = slack_pto.size
+        big = np.zeros((m + n_e, m + n_e))
+        big[:m, :m] = 0.5 * (hessian + hessian.T)
+        big[m:, m:] = 2 * slack_weights[1] * np.eye(n_e)
+        # rows: finite force limits; strokes against their upper and their lower limit; slacks >= 0; rates
+        rows = []
+        force_rows = np.flatnonzero(np.tile(np.isfinite(arrays["force_limit"]), steps))
+        if force_rows.size:
+            block = np.zeros((force_rows.size, m + n_e))
+            block[np.arange(force_rows.size), force_rows] = 1.0
+            rows.append(block)
+        if n_e:
+            sel = np.concatenate([k * n_pto + slack_pto for k in range(steps)])
+            z = np.tile(arrays["stroke_limit"], steps)[sel]
+            stroke = horizon.from_force[sel] * scale[None, :] / z[:, None]
+            slack = np.zeros((sel.size, n_e))
+            slack[np.arange(sel.size), np.tile(np.arange(n_e), steps)] = 1.0
+            rows.append(np.hstack([stroke, -slack]))  # s / Z - e <= upper
+            rows.append(np.hstack([stroke, slack]))  # s / Z + e >= lower
+            rows.append(np.hstack([np.zeros((n_e, m)), np.eye(n_e)]))  # e >= 0
+        if rate is not None:
+            block = np.zeros((m, m + n_e))
+            block[:, :m] = difference
+            rows.append(block)
+        constraints = np.vstack(rows) if rows else np.zeros((0, m + n_e))
+        return cls(
+            horizon, sp.csc_matrix(np.triu(big)), sp.csc_matrix(constraints), fs, float(energy_scale), shift,
+            slack_pto, (float(slack_weights[0]), float(slack_weights[1])), arrays["force_limit"],
+            arrays["stroke_limit"], arrays["stroke_at_equilibrium"], rate, difference, first, force_rows,
+        )  # fmt: skip
+
+    @property
+    def n_variables(self) -> int:
+        """Number of decision variables (scaled forces and slacks)."""
+        return self.hessian.shape[0]
+
+    def vectors(
+        self, state: np.ndarray, disturbance: np.ndarray, applied: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """q, l, u for the state x_0 now, the disturbance (N + 1, nv) over the horizon [N or N m per coordinate]
+        and the force applied now [N or N m] (for the rate limit)."""
+        h = self.horizon
+        steps, n_pto = h.steps, h.n_pto
+        free = h.from_state @ state + h.from_disturbance @ np.ravel(disturbance)  # strokes without PTO forces
+        scale = np.tile(self.force_scale, steps)
+        q_force = (
+            (self._difference @ free - self._first_stroke @ (h.stroke_of_state @ state)) * scale / self.energy_scale
+        )
+        n_e = self.slack_pto.size
+        q = np.concatenate([q_force, np.full(n_e, self.slack_weights[0])])
+        lower, upper = [], []
+        if self._force_rows.size:
+            limit = np.tile(self.force_limit / self.force_scale, steps)[self._force_rows]
+            lower.append(-limit)
+            upper.append(limit)
+        if n_e:
+            sel = np.concatenate([k * n_pto + self.slack_pto for k in range(steps)])
+            z = np.tile(self.stroke_limit, steps)[sel]
+            offset = (free[sel] + np.tile(self.stroke_at_equilibrium, steps)[sel]) / z
+            lower += [np.full(sel.size, -np.inf), -1.0 - offset, np.zeros(n_e)]
+            upper += [1.0 - offset, np.full(sel.size, np.inf), np.full(n_e, np.inf)]
+        if self.rate_limit is not None:
+            step = np.tile(self.rate_limit * h.period / self.force_scale, steps)
+            centre = np.zeros(steps * n_pto)
+            centre[:n_pto] = np.asarray(applied, dtype=float) / self.force_scale
+            lower.append(centre - step)
+            upper.append(centre + step)
+        if not lower:
+            return q, np.zeros(0), np.zeros(0)
+        return q, np.concatenate(lower), np.concatenate(upper)
+
+    def forces(self, solution: np.ndarray) -> np.ndarray:
+        """The planned forces (N, n_pto) [N or N m] of a solution z."""
+        steps, n_pto = self.horizon.steps, self.horizon.n_pto
+        return solution[: steps * n_pto].reshape(steps, n_pto) * self.force_scale[None, :]
+
+    def slack(self, solution: np.ndarray) -> np.ndarray:
+        """The stroke slack per PTO of a solution, relative to the stroke limit [-] (0 for PTOs without one)."""
+        out = np.zeros(self.horizon.n_pto)
+        out[self.slack_pto] = solution[self.horizon.steps * self.horizon.n_pto :]
+        return out
