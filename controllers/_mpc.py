@@ -24,6 +24,7 @@ from wecss.control import (
     optimal_damping,
     pto_referred,
 )
+from wecss.linear import LinearModel
 
 PREVIEWS = ("perfect", "causal")
 SOLVERS = ("osqp", "cvxpy")
@@ -135,6 +136,9 @@ class MPC(Controller):
         self.solver = solver
         self.cvxpy_solver = cvxpy_solver
         self.ar_order = ar_order
+        self.solve_times: list[float] = []
+        self.fallbacks = 0
+        self.largest_slack = 0.0
 
     def setup(self, context: ControlContext) -> None:
         exc = context.excitation
@@ -188,9 +192,9 @@ class MPC(Controller):
         self.applied = np.zeros(n_pto)
         self.plan: np.ndarray | None = None
         self.plan_step = 0
-        self.before: np.ndarray | None = None
+        self.known: tuple[np.ndarray, np.ndarray] | None = None
         self.history: deque[np.ndarray] = deque([np.zeros(n_pto)] * self.ar_order, maxlen=self.ar_order)
-        self.solve_times: list[float] = []
+        self.solve_times = []
         self.fallbacks = 0
         self.largest_slack = 0.0
         if self.preview == "perfect":
@@ -201,16 +205,14 @@ class MPC(Controller):
     def compute(self, t: float, measurement: Measurement) -> np.ndarray:
         if self.preview == "perfect":
             assert measurement.preview is not None
-            now = (
-                self.before
-                if self.before is not None
-                else self.excitation.force(np.array([t]))[:, 0] @ self.hydro_jacobian
-            )
-            if self.before is None:
-                self.before = now
-            state = self.observer.update(measurement.displacement, measurement.velocity, self.applied, self.before, now)
+            if self.known is None:  # first call: the disturbance now, from the scene's excitation, as before it
+                now = self.excitation.force(np.array([t]))[:, 0] @ self.hydro_jacobian
+                before = now
+            else:
+                before, now = self.known  # at t - T and at t, from the last call's preview
+            state = self.observer.update(measurement.displacement, measurement.velocity, self.applied, before, now)
             disturbance = np.vstack([now, measurement.preview @ self.hydro_jacobian])
-            self.before = disturbance[1]
+            self.known = (now, disturbance[1])
         else:
             referred = self.estimator.update(measurement.displacement, measurement.velocity, None)
             state = self.estimator.state
@@ -237,7 +239,7 @@ class MPC(Controller):
         return self.applied.copy()
 
     def report(self) -> dict[str, Any]:
-        times = np.array(self.solve_times) if getattr(self, "solve_times", None) else np.zeros(0)
+        times = np.array(self.solve_times)
         source = (
             "perfect (the scene's own excitation)"
             if self.preview == "perfect"
@@ -248,15 +250,17 @@ class MPC(Controller):
             "horizon_steps": self.horizon,
             "solver": self.solver if self.solver == "osqp" else f"cvxpy/{self.cvxpy_solver}",
             "solves": int(times.size),
-            "fallbacks": int(getattr(self, "fallbacks", 0)),
+            "fallbacks": self.fallbacks,
             "solve_time_median_ms": float(np.median(times) * 1e3) if times.size else 0.0,
             "solve_time_p99_ms": float(np.percentile(times, 99) * 1e3) if times.size else 0.0,
-            "largest_stroke_slack": float(getattr(self, "largest_slack", 0.0)),
+            "largest_stroke_slack": self.largest_slack,
             "convexity_shift": float(self.qp.convexity_shift) if hasattr(self, "qp") else 0.0,
         }
 
 
-def _synthetic_record(model: Any, omega: np.ndarray, coefficients: np.ndarray, period: float, order: int) -> np.ndarray:
+def _synthetic_record(
+    model: LinearModel, omega: np.ndarray, coefficients: np.ndarray, period: float, order: int
+) -> np.ndarray:
     """A record of the excitation referred to the PTOs (n_samples, n_pto) sampled at ``period`` [s], with the sea
     state's amplitudes and phases drawn afresh (seeded): what the AR predictor learns from is the spectrum, not the
     run's record."""

@@ -24,6 +24,7 @@ from ._protocol import Controller as Controller
 from ._protocol import Measurement as Measurement
 from ._qp_solvers import CvxpyPath as CvxpyPath
 from ._qp_solvers import OsqpPath as OsqpPath
+from ._qp_solvers import Solution as Solution
 from ._registry import ENTRY_POINT_GROUP as ENTRY_POINT_GROUP
 from ._registry import available as available
 from ._registry import check_controller as check_controller

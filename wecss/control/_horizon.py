@@ -98,14 +98,3 @@ class HorizonModel:
     def n_pto(self) -> int:
         """Number of PTOs."""
         return self.stroke_of_state.shape[0]
-
-    def strokes(self, state: np.ndarray, force: np.ndarray, disturbance: np.ndarray) -> np.ndarray:
-        """The strokes s_1 ... s_N (N, n_pto) from the equilibrium [m or rad] for the state x_0, the forces (N,
-        n_pto) [N or N m] and the disturbance (N + 1, nv) [N or N m per generalised coordinate]."""
-        s = self.from_state @ state + self.from_force @ np.ravel(force) + self.from_disturbance @ np.ravel(disturbance)
-        return s.reshape(self.steps, self.n_pto)
-
-    def step(self, state: np.ndarray, force: np.ndarray, now: np.ndarray, after: np.ndarray) -> np.ndarray:
-        """The state one period on from ``state`` with the force held and the disturbance going from ``now`` to
-        ``after``."""
-        return self.phi @ state + self.force_step @ force + self.disturbance_now @ now + self.disturbance_next @ after

@@ -60,9 +60,15 @@ class PowerQP:
     stroke_limit: np.ndarray
     stroke_at_equilibrium: np.ndarray
     rate_limit: np.ndarray | None
-    _difference: np.ndarray
-    _first_stroke: np.ndarray
-    _force_rows: np.ndarray
+    # the maps vectors() applies each step, made once: the linear term from the state and the disturbance, the
+    # stroke rows' free strokes (relative to their limits) from both, and the constant bounds
+    _q_state: np.ndarray
+    _q_disturbance: np.ndarray
+    _stroke_state: np.ndarray
+    _stroke_disturbance: np.ndarray
+    _stroke_offset: np.ndarray
+    _force_bound: np.ndarray
+    _rate_bound: np.ndarray | None
 
     @classmethod
     def build(
@@ -124,6 +130,8 @@ class PowerQP:
         shift = floor - lowest if lowest < floor else 0.0
         hessian = hessian + shift * np.eye(m)
         slack_pto = np.flatnonzero(np.isfinite(arrays["stroke_limit"]))
+        sel = np.concatenate([k * n_pto + slack_pto for k in range(steps)])  # stroke rows, step-major
+        room = np.tile(arrays["stroke_limit"], steps)[sel]
         n_e = slack_pto.size
         big = np.zeros((m + n_e, m + n_e))
         big[:m, :m] = 0.5 * (hessian + hessian.T)
@@ -136,9 +144,7 @@ class PowerQP:
             block[np.arange(force_rows.size), force_rows] = 1.0
             rows.append(block)
         if n_e:
-            sel = np.concatenate([k * n_pto + slack_pto for k in range(steps)])
-            z = np.tile(arrays["stroke_limit"], steps)[sel]
-            stroke = horizon.from_force[sel] * scale[None, :] / z[:, None]
+            stroke = horizon.from_force[sel] * scale[None, :] / room[:, None]
             slack = np.zeros((sel.size, n_e))
             slack[np.arange(sel.size), np.tile(np.arange(n_e), steps)] = 1.0
             rows.append(np.hstack([stroke, -slack]))  # s / Z - e <= upper
@@ -149,10 +155,18 @@ class PowerQP:
             block[:, :m] = difference
             rows.append(block)
         constraints = np.vstack(rows) if rows else np.zeros((0, m + n_e))
+        # q = (difference (s_1 ... s_N) - first s_0) f_ref / E_ref, the strokes free of PTO forces
+        to_q = scale[:, None] / energy_scale
+        q_state = to_q * (difference @ horizon.from_state - first @ horizon.stroke_of_state)
+        q_disturbance = to_q * (difference @ horizon.from_disturbance)
         return cls(
             horizon, sp.csc_matrix(np.triu(big)), sp.csc_matrix(constraints), fs, float(energy_scale), shift,
             slack_pto, (float(slack_weights[0]), float(slack_weights[1])), arrays["force_limit"],
-            arrays["stroke_limit"], arrays["stroke_at_equilibrium"], rate, difference, first, force_rows,
+            arrays["stroke_limit"], arrays["stroke_at_equilibrium"], rate, q_state, q_disturbance,
+            horizon.from_state[sel] / room[:, None], horizon.from_disturbance[sel] / room[:, None],
+            np.tile(arrays["stroke_at_equilibrium"], steps)[sel] / room,
+            np.tile(arrays["force_limit"] / fs, steps)[force_rows],
+            None if rate is None else np.tile(rate * period / fs, steps),
         )  # fmt: skip
 
     @property
@@ -165,34 +179,20 @@ class PowerQP:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """q, l, u for the state x_0 now, the disturbance (N + 1, nv) over the horizon [N or N m per coordinate]
         and the force applied now [N or N m] (for the rate limit)."""
-        h = self.horizon
-        steps, n_pto = h.steps, h.n_pto
-        free = h.from_state @ state + h.from_disturbance @ np.ravel(disturbance)  # strokes without PTO forces
-        scale = np.tile(self.force_scale, steps)
-        q_force = (
-            (self._difference @ free - self._first_stroke @ (h.stroke_of_state @ state)) * scale / self.energy_scale
-        )
+        d = np.ravel(disturbance)
+        n_pto = self.horizon.n_pto
         n_e = self.slack_pto.size
-        q = np.concatenate([q_force, np.full(n_e, self.slack_weights[0])])
-        lower, upper = [], []
-        if self._force_rows.size:
-            limit = np.tile(self.force_limit / self.force_scale, steps)[self._force_rows]
-            lower.append(-limit)
-            upper.append(limit)
+        q = np.concatenate([self._q_state @ state + self._q_disturbance @ d, np.full(n_e, self.slack_weights[0])])
+        lower, upper = [-self._force_bound], [self._force_bound]
         if n_e:
-            sel = np.concatenate([k * n_pto + self.slack_pto for k in range(steps)])
-            z = np.tile(self.stroke_limit, steps)[sel]
-            offset = (free[sel] + np.tile(self.stroke_at_equilibrium, steps)[sel]) / z
-            lower += [np.full(sel.size, -np.inf), -1.0 - offset, np.zeros(n_e)]
-            upper += [1.0 - offset, np.full(sel.size, np.inf), np.full(n_e, np.inf)]
-        if self.rate_limit is not None:
-            step = np.tile(self.rate_limit * h.period / self.force_scale, steps)
-            centre = np.zeros(steps * n_pto)
+            offset = self._stroke_state @ state + self._stroke_disturbance @ d + self._stroke_offset
+            lower += [np.full(offset.size, -np.inf), -1.0 - offset, np.zeros(n_e)]
+            upper += [1.0 - offset, np.full(offset.size, np.inf), np.full(n_e, np.inf)]
+        if self._rate_bound is not None:
+            centre = np.zeros(self._rate_bound.size)
             centre[:n_pto] = np.asarray(applied, dtype=float) / self.force_scale
-            lower.append(centre - step)
-            upper.append(centre + step)
-        if not lower:
-            return q, np.zeros(0), np.zeros(0)
+            lower.append(centre - self._rate_bound)
+            upper.append(centre + self._rate_bound)
         return q, np.concatenate(lower), np.concatenate(upper)
 
     def forces(self, solution: np.ndarray) -> np.ndarray:

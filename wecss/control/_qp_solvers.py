@@ -11,8 +11,9 @@ import numpy as np
 
 from ._power_qp import PowerQP
 
-TOLERANCE: float = 1e-7
-"""Absolute and relative tolerance given to the solvers (the programme is scaled to order one)."""
+TOLERANCE: float = 1e-9
+"""Absolute and relative tolerance given to the solvers (the programme is scaled to order one). At 1e-7 OSQP's
+forces were up to 1.7e-3 N m from Clarabel's on an m4-111 run with its limits binding; at 1e-9 within 4e-4."""
 
 
 @dataclass(frozen=True)
