@@ -7,7 +7,8 @@ and causal MPC (excitation estimator and AR predictor).
     python studies/wecccomp.py --quick    # sea state 1, 40 s (CI smoke run)
 
 Needs the competition's WAMIT data in ../shared/data (skips with a message when they are absent). The
-competition's hinge friction (1.8 N m s/rad) is not modelled (see docs/control.md).
+competition's hinge friction (1.8 N m s/rad) is the device's own loss (the hinge's ``damping`` in the wavestar
+spec): no controller owns it and it is not PTO power.
 """
 
 from __future__ import annotations

@@ -368,7 +368,7 @@ def accelerations(
     for k in range(hi.shape[0]):
         force[hi[k]] += load[k]
     # generalised force: world loads through Bw; inertial terms (body-axis moments) through B
-    gen = bw.T @ force + ba.T @ rhs
+    gen = bw.T @ force + ba.T @ rhs - p.joint_damping * v  # the joints' own losses
     stroke, gmat = pto_strokes(p, q, rot, pos, b)
     x = stroke - p.pto_rest
     xdot = gmat @ v

@@ -50,6 +50,9 @@ class Plant(NamedTuple):
         pto_force_limit : largest |controller force|, inf for none [N or N m]
         pto_stroke_limit : largest |stroke from rest|, inf for none [m or rad]
         pto_stop_stiffness, pto_stop_damping : the end stop beyond the stroke limit (0: none, the run stops)
+    Joints
+        joint_damping : (nv,) the joints' own viscous damping per generalised velocity, a device loss (generalised
+        force -joint_damping * v) [N m s/rad or N s/m]
     """
 
     order: np.ndarray
@@ -84,6 +87,7 @@ class Plant(NamedTuple):
     pto_stroke_limit: np.ndarray
     pto_stop_stiffness: np.ndarray
     pto_stop_damping: np.ndarray
+    joint_damping: np.ndarray
 
 
 def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
@@ -227,4 +231,5 @@ def build_plant(
         **_pto_arrays(model, ptos),
         pto_damping=np.zeros(n_pto) if damping is None else np.asarray(damping, dtype=float),
         pto_stiffness=np.zeros(n_pto) if stiffness is None else np.asarray(stiffness, dtype=float),
+        joint_damping=model.joint_damping,
     )

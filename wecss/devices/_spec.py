@@ -11,7 +11,8 @@ Spec layout (TOML; the same keys as a dict)::
     [[bodies]]                  # name, mass [kg], inertia [kg m^2] (3 diagonal values or 3x3 about the CoM),
     name = "float_1"            # center_of_mass [m] (world, reference configuration), hydro_body (optional)
     ...
-    [[joints]]                  # name, kind, child, parent (omit for the base), axis, point [m], label
+    [[joints]]                  # name, kind, child, parent (omit for the base), axis, point [m], label,
+                                # damping (the joint's own viscous loss, revolute/prismatic [N m s/rad, N s/m])
     ...
     [[ptos]]                    # kind = "joint" (joint, rest) or "actuator" (body_a, point_a, body_b, point_b,
     ...                         # rest_length); damping, stiffness, force_limit, stroke_limit,
@@ -29,7 +30,7 @@ from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Multibody
 
 _TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos"}
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
-_JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label"}
+_JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
 _LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}
 _JOINT_PTO_KEYS = {"name", "kind", "joint", "damping", "stiffness", "rest", *_LIMIT_KEYS}
 _ACTUATOR_KEYS = {

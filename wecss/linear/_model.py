@@ -9,8 +9,9 @@ force on every hydro DOF (world axes) and a PTO force per PTO added to the linea
     M xi_ddot = -K xi - C xi_dot + Bw' (F_exc - C_r r) + G' f_pto,     r_dot = A_r r + B_r Bw xi_dot
 
 with M = M*(q0) (A_inf with the simulator's consistency correction), K the static stiffness with its geometric
-part and the controller's linear stiffness, C = G' diag(c) G the controller's linear damping, Bw the world-frame
-Jacobian of the hydro DOFs and G the PTO transmissions at q0. The gyroscopic and Bdot terms are quadratic in the
+part and the controller's linear stiffness, C = G' diag(c) G + diag(c_j) the controller's linear damping and the
+joints' own losses (``Joint.damping``), Bw the world-frame Jacobian of the hydro DOFs and G the PTO transmissions
+at q0. The gyroscopic and Bdot terms are quadratic in the
 velocities and vanish at equilibrium.
 
 In the frequency domain, with xi = Re[xi_hat e^{i omega t}] and the database's own A_inf:
@@ -76,7 +77,8 @@ class LinearModel:
     Attributes
     ----------
     mass, damping, stiffness : ndarray (nv, nv)
-        M* (with the A_inf of the scene's radiation memory), the controller's linear PTO damping C and the static
+        M* (with the A_inf of the scene's radiation memory), the linear damping C (the controller's PTO damping
+        and the joints' own losses) and the static
         stiffness K with its geometric part and the controller's stiffness [SI per generalised coordinate].
     database_mass : ndarray (nv, nv)
         M* with the database's own A_inf, which the exact frequency response completes with A(omega) - A_inf.
@@ -189,6 +191,42 @@ class LinearModel:
             system=system,
         )
 
+    def with_radiation(self, radiation: RadiationStateSpace) -> LinearModel:
+        """The same device with other radiation states ``radiation`` (a reduced model of this one's memory, say;
+        same DOFs): the state-space system's radiation block replaced, the rest (masses, damping, stiffness, the
+        exact frequency response from the database) unchanged.
+
+        Raises
+        ------
+        NoStateSpace
+            When this model has no state-space system.
+        ValueError
+            If ``radiation`` has other DOFs than this model's radiation states.
+        """
+        system = self.state_space
+        if self.radiation is None or tuple(radiation.dofs) != tuple(self.radiation.dofs):
+            raise ValueError(
+                f"radiation DOFs {tuple(radiation.dofs)} differ from this model's "
+                f"{None if self.radiation is None else tuple(self.radiation.dofs)}"
+            )
+        nv, nz = self.mass.shape[0], radiation.n_states
+        bw = self.hydro_jacobian
+        a = np.zeros((2 * nv + nz, 2 * nv + nz))
+        a[: 2 * nv, : 2 * nv] = np.asarray(system.A)[: 2 * nv, : 2 * nv]
+        a[nv : 2 * nv, 2 * nv :] = -np.linalg.solve(self.mass, bw.T @ radiation.C)
+        a[2 * nv :, nv : 2 * nv] = radiation.B @ bw
+        a[2 * nv :, 2 * nv :] = radiation.A
+        bmat = np.zeros((2 * nv + nz, system.ninputs))
+        bmat[: 2 * nv] = np.asarray(system.B)[: 2 * nv]
+        c = np.zeros((system.noutputs, 2 * nv + nz))
+        c[:, : 2 * nv] = np.asarray(system.C)[:, : 2 * nv]
+        labels = list(system.state_labels)[: 2 * nv]
+        reduced = control.ss(
+            a, bmat, c, system.D, states=[*labels, *(f"radiation_{k}" for k in range(nz))],
+            inputs=list(system.input_labels), outputs=list(system.output_labels), name=system.name,
+        )  # fmt: skip
+        return replace(self, radiation=radiation, system=reduced)
+
     @property
     def n_states(self) -> int:
         """Number of states (2 nv + radiation states)."""
@@ -241,7 +279,7 @@ class LinearModel:
                     self.database_mass,
                     {"long_name": "M* with the database's A_inf"},
                 ),
-                "damping": (("dof", "dof_col"), self.damping, {"long_name": "linear PTO damping G' diag(c) G"}),
+                "damping": (("dof", "dof_col"), self.damping, {"long_name": "linear damping G' diag(c) G + diag(c_j)"}),
                 "stiffness": (
                     ("dof", "dof_col"),
                     self.stiffness,
@@ -427,7 +465,7 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
     # the database's own A_inf: the exact frequency response adds A(omega) - A_inf (no memory-model correction)
     database = b.T @ (body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf) @ b
     stiffness = compiled.stiffness  # device springs and the controller's stiffness included
-    damping = g.T @ np.diag(p.pto_damping) @ g
+    damping = g.T @ np.diag(p.pto_damping) @ g + np.diag(p.joint_damping)  # the joints' own losses too
     ds = compiled.hydro.dataset
     hydro = HydroResponse(
         compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values

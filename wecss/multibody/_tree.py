@@ -104,6 +104,10 @@ class Joint:
     label : str, optional
         Name of the coordinate of a one-DOF joint (default from the axis: roll/pitch/yaw for revolute joints,
         surge/sway/heave for prismatic joints, "angle"/"displacement" for oblique axes).
+    damping : float, optional
+        Linear viscous damping of a revolute or prismatic joint's coordinate [N m s/rad or N s/m] (default 0): a
+        loss of the device itself, such as bearing friction, that acts whatever the controller does and is not
+        PTO power.
     """
 
     name: str
@@ -113,6 +117,7 @@ class Joint:
     axis: np.ndarray | None = None
     point: np.ndarray | None = None
     label: str | None = None
+    damping: float = 0.0
 
     def __post_init__(self) -> None:
         if not self.name or "__" in self.name:
@@ -137,6 +142,15 @@ class Joint:
             if norm == 0:
                 raise ValueError(f"joint {self.name!r}: axis must not be zero")
             object.__setattr__(self, "axis", axis / norm)
+        if not (isinstance(self.damping, int | float) and np.isfinite(self.damping) and self.damping >= 0):
+            raise ValueError(
+                f"joint {self.name!r}: damping must be a finite number >= 0 [N m s/rad or N s/m]; got {self.damping!r}"
+            )
+        if self.damping and self.kind not in ("revolute", "prismatic"):
+            raise ValueError(
+                f"joint {self.name!r}: only revolute and prismatic joints take a damping; it is {self.kind}"
+            )
+        object.__setattr__(self, "damping", float(self.damping))
         if self.kind == "revolute":
             if self.point is None:
                 raise ValueError(f"joint {self.name!r}: a revolute joint needs a point on its axis [m]")
@@ -286,6 +300,12 @@ class Multibody:
     def nv(self) -> int:
         """Number of generalised velocities (degrees of freedom)."""
         return sum(j.nv for j in self.joints)
+
+    @property
+    def joint_damping(self) -> np.ndarray:
+        """The joints' own viscous damping per generalised velocity (nv,), in the order of ``velocity_names``
+        [N m s/rad or N s/m]: the generalised force -diag(joint_damping) v (zero on base joints)."""
+        return np.array([j.damping for j in self.ordered_joints for _ in j.labels], dtype=float)
 
     @property
     def nq(self) -> int:

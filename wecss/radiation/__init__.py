@@ -17,6 +17,7 @@ from ._irf import impulse_response as impulse_response
 from ._plot import plot_fit as plot_fit
 from ._reduce import Reduction as Reduction
 from ._reduce import balanced_truncation as balanced_truncation
+from ._reduce import truncate_to_error as truncate_to_error
 from ._statespace import STABILITY_DAMPING as STABILITY_DAMPING
 from ._statespace import RadiationStateSpace as RadiationStateSpace
 from ._statespace import Repair as Repair
