@@ -122,13 +122,13 @@ def main() -> None:
             "",
             "`python studies/control_table.py`: mean absorbed power over the final half of the run [mW] and its share "
             "of the complex-conjugate bound of the same wave components. m4-134: JONSWAP Hs 0.04 m, Tp 1.2 s, gamma "
-            "3.3, 100 Tp, dt Tp/200; wavestar: WECCCOMP sea state 5 (Hm0 0.0625 m, Tp 1.412 s, gamma 3.3, its ramp "
-            "and length), dt Tp/200, no hinge losses, its motor's 60 N force limit and 0.08 m stroke limit (no end "
-            "stop: a run that passes it stops). Both with state-space radiation. Damping: 6 N m s/rad (M4 paper) on "
-            "the M4 hinges; on the Wavestar the motor damping that gives 6 N m s/rad at the hinge. Where linear and "
-            "nonlinear differ most (the Wavestar's reactive control) the motor's stroke is a nonlinear function of "
-            "the hinge angle that the linear model takes at its slope at equilibrium, and reactive control moves it "
-            "most.",
+            "3.3, 100 Tp, dt Tp/200; wavestar: WECCCOMP sea state 5 (Hm0 0.0625 m, Tp 1.412 s, gamma 3.3, its ramp and "
+            "length), dt Tp/200, its hinge friction 1.8 N m s/rad (a device loss), its motor's 60 N force limit and "
+            "0.08 m stroke limit (no end stop: a run that passes it stops). Both with state-space radiation. Damping: "
+            "6 N m s/rad (M4 paper) on the M4 hinges; on the Wavestar the motor damping that gives 6 N m s/rad at the "
+            "hinge. Where linear and nonlinear differ most (the Wavestar's reactive control) the motor's stroke is a "
+            "nonlinear function of the hinge angle that the linear model takes at its slope at equilibrium, and "
+            "reactive control moves it most.",
             "",
             "| device | controller | linear [mW] | nonlinear [mW] | linear / bound | nonlinear / bound "
             "| force at its limit, linear / nonlinear [s] |",
