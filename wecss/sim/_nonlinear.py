@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..compiled import CompiledScene, accelerations
+from ..compiled import CompiledScene, Plant, RadiationArrays, accelerations
 from ..scene import SceneError
 from ._control import ControlLoop
 from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
@@ -72,6 +72,24 @@ class _Progress:
         )
         if done >= self.total:
             print(file=sys.stderr)
+
+
+def _shift_history(p: Plant, r: RadiationArrays, state: LoopState, held: np.ndarray, command: np.ndarray) -> None:
+    """Beeman's acceleration history across a jump of the held PTO command at the present instant.
+
+    Beeman's predictor and corrector extrapolate the accelerations a_n and a_{n-1} as a smooth function; a command
+    that jumps at t_n makes them the accelerations of the force that no longer acts, and the step's position
+    prediction (never corrected) misses the new force: an error of order h^2 per jump, first order over a run.
+    The jump in acceleration at the present state is exactly the difference of two evaluations that differ only in
+    the command (the PTO force enters additively, through the same mass and transmission); both history values are
+    moved by it, as if the new command had always acted. RK4 needs none of this: it restarts every step.
+    """
+    q, v, acc, acc_prev = state.q, state.v, state.acc, state.acc_prev
+    no_load = np.zeros(p.hydro_index.size)
+    no_memory = np.zeros_like(r.newest)
+    jump = accelerations(p, q, v, no_load, no_memory, command)[0] - accelerations(p, q, v, no_load, no_memory, held)[0]
+    acc += jump
+    acc_prev += jump
 
 
 def _diverged(
@@ -170,7 +188,10 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     while done < n:
         m = min(chunk, n - done)
         if loop is not None:
+            held = command
             command = loop.force(done * h, pto_now[0], pto_now[1], full_state)
+            if not rk4 and np.any(command != held):
+                _shift_history(p, r, state, held, command)
         if rk4:
             times = (done + 0.5 * np.arange(2 * m + 1)) * h
             status, at = rk4_chunk(p, r, compiled.excitation_at(times), command, done, settings, state, out)
