@@ -163,7 +163,10 @@ class MPC(Controller):
         built_for = (plant, exc, period, tuple(context.force_limit), tuple(context.stroke_limit))
         last = getattr(self, "_built_for", None)
         if last is not None and all(a is b or a == b for a, b in zip(last, built_for, strict=True)):
-            self._start()  # set up again for the same plant and sea (the simulators do so per run): keep the build
+            # set up again for the same plant and sea (the simulators do so per run): keep the build, but a fresh
+            # solver (no warm start carried from an earlier run, so that every run is the same)
+            self.path = self._solver_path()
+            self._start()
             return
         model = self._reduced(plant, period)
         self.preview_horizon = steps * period if self.preview == "perfect" else None
@@ -184,7 +187,7 @@ class MPC(Controller):
             stroke_at_equilibrium=model.pto_stroke, force_penalty=penalty, force_scale=np.sqrt(power * c_opt),
             energy_scale=float(np.sum(power)) * steps * period, rate_limit=rate, slack_weights=self.stroke_weights,
         )  # fmt: skip
-        self.path = OsqpPath(self.qp) if self.solver == "osqp" else CvxpyPath(self.qp, solver=self.cvxpy_solver)
+        self.path = self._solver_path()
         self.fallback_damping = c_opt
         self.force_limit = np.asarray(context.force_limit, dtype=float)
         self.hydro_jacobian = model.hydro_jacobian
@@ -207,6 +210,10 @@ class MPC(Controller):
             )
         self._built_for = built_for
         self._start()
+
+    def _solver_path(self) -> OsqpPath | CvxpyPath:
+        """A new solver of the built programme (the direct OSQP path or cvxpy's)."""
+        return OsqpPath(self.qp) if self.solver == "osqp" else CvxpyPath(self.qp, solver=self.cvxpy_solver)
 
     def _reduced(self, model: LinearModel, period: float) -> LinearModel:
         """``model`` with its radiation states reduced by balanced truncation to ``radiation_error`` (class
