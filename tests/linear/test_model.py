@@ -165,17 +165,19 @@ def _empty_radiation(compiled):
 
 def test_closed_loop_linear_run_matches_the_nonlinear_run_in_small_waves():
     """A controller without linear gains closes the loop of the linear model (force held over each step, as in the
-    nonlinear simulator). At Hs 0.004 m the two agree to first order in dt: a held force is first order, and the
-    exact hold of the linear model and Beeman's blend of the held values differ by O(dt)."""
+    nonlinear simulator). At Hs 0.004 m the two differ by what linearisation leaves out (measured 0.165 % RMS of
+    the hinge angle), the same for Beeman and RK4 and at dt 6 and 3 ms: neither integrator adds an error of its own
+    at the held force's jumps (Beeman's history is moved by each jump; before that it added a first-order error of
+    about 0.3 % at 6 ms)."""
     import dataclasses
 
     from wecss.sim import simulate
 
     differences = []
-    for dt in (0.006, 0.003):
+    for method, dt in (("beeman", 0.006), ("beeman", 0.003), ("rk4", 0.006)):
         compiled = _compiled(duration=30.0)
         sc = compiled.scene
-        compiled = compile_scene(dataclasses.replace(sc, solver=dataclasses.replace(sc.solver, dt=dt)))
+        compiled = compile_scene(dataclasses.replace(sc, solver=dataclasses.replace(sc.solver, dt=dt, method=method)))
         closed = held(compiled)
         linear = simulate_linear(closed)
         nonlinear = simulate(closed)
@@ -187,8 +189,8 @@ def test_closed_loop_linear_run_matches_the_nonlinear_run_in_small_waves():
             rate, torque = run.pto_angular_velocity.values, run.pto_torque.values
             np.testing.assert_allclose(torque[1:], -6.0 * rate[:-1], rtol=1e-12, atol=1e-15)
             assert np.all(torque[0] == 0.0)
-    assert differences[0] <= 0.02, differences
-    assert 1.6 <= differences[0] / differences[1] <= 2.5, differences
+    assert max(differences) <= 0.003, differences
+    assert max(differences) <= 1.05 * min(differences), differences
 
 
 def test_linear_models_are_cached_by_scene_fingerprint():
