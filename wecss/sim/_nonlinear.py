@@ -13,7 +13,6 @@ import time as _time
 from typing import Any
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..compiled import CompiledScene, accelerations
 from ..scene import SceneError
@@ -232,6 +231,8 @@ def run_reference(compiled: CompiledScene, progress: bool) -> Record:
     time = compiled.time  # every step, to the end, for the statistics; the saved ones are every ``every``-th
     y0 = np.concatenate([compiled.q0, np.zeros(nv + 2 * nz)])
     start = _time.perf_counter()
+    from scipy.integrate import solve_ivp  # lazy: only the reference solver needs it
+
     sol = solve_ivp(
         rates, (0.0, time[-1]), y0, method="DOP853", t_eval=time, rtol=scene.solver.reference_rtol, atol=1e-12
     )
