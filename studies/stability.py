@@ -47,7 +47,7 @@ PTOS = {
     "paper (c = 6)": {"name": "damping", "parameters": {"damping": 6.0}},
     "100 x damping (c = 600)": {"name": "damping", "parameters": {"damping": 600.0}},
     "100 x stiffness (k = 1.07e5, c = 6)": {
-        "name": "spring_damper",
+        "name": "spring-damper",
         "parameters": {"damping": 6.0, "stiffness": 100 * HINGE_STIFFNESS_111},
     },
 }
