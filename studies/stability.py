@@ -155,7 +155,8 @@ def report(rows: list[dict], steep: list[dict], iterations: int) -> str:
         f"{ACCURATE_DIVISOR} (stable) and Tp/2, {iterations} halvings of the bracket (the true limit lies between the "
         "two columns). Tp = 1.2 s.",
         "",
-        "| layout | integrator | radiation | PTO | largest stable dt | smallest failing dt | runs | why the step above fails |",
+        "| layout | integrator | radiation | PTO | largest stable dt | smallest failing dt | runs | "
+        "why the step above fails |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
