@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import datetime
+import os
 import platform
 import sys
 import tempfile
@@ -205,7 +206,8 @@ def report(rows: list[dict], duration: float, repeats: int, picture: str) -> str
         "`power` of the mean PTO power (both after the ramp, over the same samples for run and reference). RK4 runs "
         "only with the state-space radiation (the scene refuses RK4 with the convolution). "
         f"Time: the time loop, median of {repeats} runs after a warm-up. Convolution "
-        "rows carry the convolution/state-space model difference as an error floor (not an integration error).",
+        "rows carry the convolution/state-space model difference as an error floor (not an integration error). "
+        f"The machine ({os.cpu_count()} cores) may be shared with other jobs: times compare within a table.",
         "",
     ]
     for device, sea in sorted({(r["device"], r["sea"]) for r in rows}):
