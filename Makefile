@@ -44,6 +44,9 @@ studies-quick: $(STAMP)
 	$(PY) studies/control_table.py --quick
 	$(PY) studies/m4_control.py --quick
 	$(PY) studies/bench_mpc.py --quick
+	$(PY) studies/work_precision.py --quick
+	$(PY) studies/stability.py --quick
+	$(PY) studies/bench_startup.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

@@ -260,12 +260,12 @@ def memory_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np
     out = np.zeros((omega.size, n_h, n_h), dtype=complex)
     if arrays.kind == RadiationKind.STATE_SPACE:
         resolvent = 1.0 / (1j * omega[:, None] - arrays.poles[None, :])
-        full = np.einsum("ik,wk,kj->wij", arrays.output, resolvent, arrays.input)
+        # C diag(resolvent) B as one batched matrix product (an unoptimised three-operand einsum took ~0.3 s)
+        full = (arrays.output[None, :, :] * resolvent[:, None, :]) @ arrays.input
         # the kept states stand for conjugate pairs: Re(c z) = (c z + conj(c z)) / 2 per pair, exactly the real part
         # of the pair's response; this equals (full(omega) + conj(full(-omega))) / 2
-        mirror = np.einsum(
-            "ik,wk,kj->wij", arrays.output, 1.0 / (-1j * omega[:, None] - arrays.poles[None, :]), arrays.input
-        )
+        mirror_resolvent = 1.0 / (-1j * omega[:, None] - arrays.poles[None, :])
+        mirror = (arrays.output[None, :, :] * mirror_resolvent[:, None, :]) @ arrays.input
         return 0.5 * (full + np.conj(mirror))
     if arrays.kind == RadiationKind.CONVOLUTION:
         out -= arrays.newest[None]

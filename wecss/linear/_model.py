@@ -27,8 +27,8 @@ from __future__ import annotations
 import hashlib
 from collections import OrderedDict
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
-import control
 import numpy as np
 import xarray as xr
 from scipy.linalg import expm
@@ -37,6 +37,11 @@ from ..compiled import CompiledScene, interpolate_matrices, kinematics, pto_stro
 from ..multibody import body_mass_matrix
 from ..radiation import RadiationStateSpace
 from ._modal_recursion import ModalForm, ModalSteps
+
+if (
+    TYPE_CHECKING
+):  # python-control pulls in matplotlib.pyplot and scipy.signal (~0.7 s): imported where a system is built
+    import control
 
 
 def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -178,6 +183,8 @@ class LinearModel:
             minv = np.linalg.inv(self.mass)
             a[nv : 2 * nv, :nv] -= minv @ change_k
             a[nv : 2 * nv, nv : 2 * nv] -= minv @ change_c
+            import control
+
             system = control.ss(
                 a, self.system.B, self.system.C, self.system.D, states=list(self.system.state_labels),
                 inputs=list(self.system.input_labels), outputs=list(self.system.output_labels), name=self.system.name,
@@ -315,6 +322,8 @@ class LinearModel:
     @classmethod
     def from_dataset(cls, ds: xr.Dataset) -> LinearModel:
         """Inverse of :meth:`to_dataset`."""
+        import control
+
         sys = control.ss(
             ds.A.values,
             ds.B.values,
@@ -513,6 +522,8 @@ def _state_space(
     c[2 * nv + n_pto :, nv : 2 * nv] = g
     names = list(compiled.device.model.velocity_names)
     ptos = [pto.name for pto in compiled.device.ptos]
+    import control
+
     return control.ss(
         a,
         bmat,

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -156,9 +157,10 @@ class Joint:
                 raise ValueError(f"joint {self.name!r}: a revolute joint needs a point on its axis [m]")
             object.__setattr__(self, "point", _vector(self.point, f"joint {self.name!r} point"))
 
-    @property
+    @cached_property
     def labels(self) -> tuple[str, ...]:
-        """Names of this joint's generalised velocities (its DOFs), without the joint-name prefix."""
+        """Names of this joint's generalised velocities (its DOFs), without the joint-name prefix (computed once: the
+        joint is frozen, and the statics ask for it thousands of times)."""
         if self.kind in ("fixed", "weld"):
             return ()
         if self.kind == "planar":

@@ -12,7 +12,6 @@ from functools import lru_cache
 from typing import Protocol
 
 import numpy as np
-from scipy.integrate import quad
 
 from ..constants import GRAVITY, RHO_WATER
 
@@ -46,6 +45,8 @@ def _shape_moment(n: int, gamma: float) -> float:
 
     def f(w: float) -> float:
         return float(w**n * _jonswap_shape(np.array([w]), 1.0, gamma)[0])
+
+    from scipy.integrate import quad  # lazy: scipy.integrate costs ~0.2 s at import
 
     total = 0.0
     for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 3.0), (3.0, np.inf)):
