@@ -156,12 +156,12 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path: Path) -> N
     process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and process.poll() is None:
-        if killed.is_dir() and len(list(killed.glob("c*.nc"))) >= 2:
+        if killed.is_dir() and len(list(killed.glob("c[0-9]*.nc"))) >= 2:
             break
         time.sleep(0.01)
     process.send_signal(signal.SIGKILL)  # no clean-up: as a lost machine or `kill -9`
     process.wait()
-    finished = {p.name for p in killed.glob("c*.nc")}
+    finished = {p.name for p in killed.glob("c[0-9]*.nc")}
     assert 2 <= len(finished) < len(sweep.cases), "the sweep must be killed mid-way"
     for name in finished:  # every file counted as finished is complete
         xr.open_dataset(killed / name).close()
