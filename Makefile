@@ -43,6 +43,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/control_example.py --quick
 	$(PY) studies/control_table.py --quick
 	$(PY) studies/m4_paper.py --quick
+	$(PY) studies/bench_sweep.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

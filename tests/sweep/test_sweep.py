@@ -204,3 +204,30 @@ def test_bad_runner_options_are_refused(tmp_path: Path) -> None:
         run_sweep(sweep, tmp_path, workers=2)
     with pytest.raises(ValueError, match="processes is for runs without Dask"):
         run_sweep(sweep, tmp_path, dask=True, processes=2)
+
+
+def test_cases_that_change_only_the_sea_reuse_the_device_and_give_the_results_of_a_fresh_compile() -> None:
+    from wecss.compiled import clear_compile_cache, compile_plant
+    from wecss.sim import simulate
+
+    first, second = (
+        Scene.from_dict({**BASE, "sea": {**BASE["sea"], "period": p}, "solver": {"method": "beeman", "dt": 0.01}})
+        for p in (1.0, 1.3)
+    )
+    plant = compile_plant(first)
+    cached = compile_plant(second)
+    assert cached.coupling is plant.coupling and cached.device is plant.device  # built once
+    assert cached.radiation is plant.radiation  # same step: the same kernel arrays
+    clear_compile_cache()
+    fresh = compile_plant(second)
+    assert fresh.coupling is not plant.coupling
+    np.testing.assert_array_equal(fresh.q0, cached.q0)
+    np.testing.assert_array_equal(fresh.stiffness, cached.stiffness)
+    short = {"sea": {**BASE["sea"], "period": 1.3, "duration": 5.0}, "solver": {"method": "beeman", "dt": 0.01}}
+    scene = Scene.from_dict({**BASE, **short})
+    a = simulate(scene)
+    b = simulate(scene)  # the second compile from the cache
+    clear_compile_cache()
+    c = simulate(scene)
+    np.testing.assert_array_equal(a.mean_pto_power.values, b.mean_pto_power.values)
+    np.testing.assert_array_equal(a.mean_pto_power.values, c.mean_pto_power.values)
