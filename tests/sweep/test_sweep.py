@@ -231,3 +231,12 @@ def test_cases_that_change_only_the_sea_reuse_the_device_and_give_the_results_of
     c = simulate(scene)
     np.testing.assert_array_equal(a.mean_pto_power.values, b.mean_pto_power.values)
     np.testing.assert_array_equal(a.mean_pto_power.values, c.mean_pto_power.values)
+
+
+def test_a_sweep_runs_on_an_existing_cluster_given_by_its_scheduler_address(tmp_path: Path) -> None:
+    distributed = pytest.importorskip("dask.distributed")
+    sweep = Sweep(BASE, (("sea.period", (1.0, 1.4)),))
+    sequential = run_sweep(sweep, tmp_path / "one", progress=None)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
+        remote = run_sweep(sweep, tmp_path / "remote", scheduler=cluster.scheduler_address, progress=None)
+    xr.testing.assert_identical(_statistics(remote), _statistics(sequential))
