@@ -187,7 +187,7 @@ def test_the_cli_runs_a_sweep_file(tmp_path: Path, capsys: pytest.CaptureFixture
 
 def test_process_pool_and_local_dask_cluster_give_the_results_of_the_sequential_run(tmp_path: Path) -> None:
     pytest.importorskip("dask.distributed")
-    sweep = Sweep(BASE, (("sea.period", (1.0, 1.2, 1.4)), ("controller.parameters.damping", (3.0, 6.0))))
+    sweep = Sweep(BASE, (("sea.period", (1.0, 1.4)), ("controller.parameters.damping", (3.0, 6.0))))
     sequential = run_sweep(sweep, tmp_path / "one", progress=None)
     pool = run_sweep(sweep, tmp_path / "pool", processes=2, progress=None)
     dask = run_sweep(sweep, tmp_path / "dask", dask=True, workers=2, progress=None)
@@ -233,6 +233,7 @@ def test_cases_that_change_only_the_sea_reuse_the_device_and_give_the_results_of
     np.testing.assert_array_equal(a.mean_pto_power.values, c.mean_pto_power.values)
 
 
+@pytest.mark.slow
 def test_a_sweep_runs_on_an_existing_cluster_given_by_its_scheduler_address(tmp_path: Path) -> None:
     distributed = pytest.importorskip("dask.distributed")
     sweep = Sweep(BASE, (("sea.period", (1.0, 1.4)),))
