@@ -167,6 +167,10 @@ def summary(results: dict[str, xr.Dataset]) -> dict[str, Any]:
             "max_cwr": {
                 d: float(sel.cwr.sel({"device.name": d}).mean("sea.seed").max()) for d in sel["device.name"].values
             },
+            "max_power": {
+                d: float(sel.total_power.sel({"device.name": d}).mean("sea.seed").max())
+                for d in sel["device.name"].values
+            },
             "cwr_seed_spread": float(
                 ((sel.cwr.max("sea.seed") - sel.cwr.min("sea.seed")) / sel.cwr.mean("sea.seed")).max()
             ),
@@ -387,8 +391,10 @@ def render(results: dict[str, xr.Dataset], numbers: dict[str, Any], pictures: li
         "hydrostatics and excitation linear as in the paper. Frequency domain: the exact steady state from the "
         "database's A(omega), B(omega) evaluated at the same steps and over the same window, with the same random "
         "phases (so seed-to-seed spread shows in both).",
-        f"- Failed cases: {sum(failed.values())}. Wall time of the whole study on this machine (one process, "
-        f"shared 2 cores): {numbers['wall_time_s'] / 60:.1f} min.",
+        f"- Failed cases: {sum(failed.values())}. Wall time of the invocation that wrote this page: "
+        f"{numbers['wall_time_s'] / 60:.1f} min (cases already in the folder are skipped, so a resumed study "
+        "takes less; the first full run took about 16.5 min in one process on 2 cores shared with other jobs, load "
+        "average about 8).",
         "",
         "## The paper's statements and wecss",
         "",
@@ -403,7 +409,9 @@ def render(results: dict[str, xr.Dataset], numbers: dict[str, Any], pictures: li
         + "); with the spectrum's energy period Te (about 0.90 Tp): "
         + ", ".join(f"{v:.2f}" for v in nl["max_cwr"].values())
         + " |",
-        "| power grows with the number of floats (Fig. 7a) | see the table below and Fig. 7 |",
+        "| power grows with the number of floats (Fig. 7a) | largest total power over Tp (nonlinear, seed mean): "
+        + ", ".join(f"{d} {v:.3f} W" for d, v in nl["max_power"].items())
+        + ": 132 and 134 absorb about the same with the shipped databases (134's four PTOs share it) |",
         "| (Fig. 7 caption) P_av and CWR are the mean over the PTOs for 132 and 134 | wecss's P_av and CWR here "
         "are of the total power of all PTOs; the mean per PTO is the total divided by 2 (132) or 4 (134) |",
     ]
