@@ -241,3 +241,18 @@ def test_a_sweep_runs_on_an_existing_cluster_given_by_its_scheduler_address(tmp_
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
         remote = run_sweep(sweep, tmp_path / "remote", scheduler=cluster.scheduler_address, progress=None)
     xr.testing.assert_identical(_statistics(remote), _statistics(sequential))
+
+
+def test_progress_in_a_log_prints_a_line_now_and_then_not_per_case() -> None:
+    import io
+
+    from wecss.sweep import Progress
+
+    log = io.StringIO()  # not a terminal
+    bar = Progress(50, log)
+    for i in range(50):
+        bar.update(ok=i != 7)
+    lines = log.getvalue().splitlines()
+    assert len(lines) == 2  # the first case (no line printed before) and the last
+    assert lines[-1].endswith("50/50 cases: 49 done, 1 failed, ETA 0s")
+    assert "\r" not in log.getvalue()
