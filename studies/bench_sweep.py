@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import platform
 import sys
 import tempfile
@@ -99,6 +100,8 @@ def main(argv: list[str] | None = None) -> int:
         "",
         f"Per-case overhead outside the time loop (sequential: wall time per case minus the median time loop, over "
         f"the wall time per case; compile, result Dataset, netCDF file, combining): {overhead:.1%} (target <= 10 %).",
+        f"Load average at the end of the run: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (other jobs "
+        "share the machine: compare the time loop per case with the Simulator table's quiet-machine numbers).",
     ]
     write_section(ROOT / "docs" / "benchmarks.md", "## Sweeps", "\n".join(lines))
     print("wrote the Sweeps section of docs/benchmarks.md")
