@@ -13,7 +13,7 @@ STAMP := $(VENV)/.installed
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast]"
+	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,dask]"
 	touch $(STAMP)
 
 demo: $(STAMP)
@@ -47,6 +47,8 @@ studies-quick: $(STAMP)
 	$(PY) studies/work_precision.py --quick
 	$(PY) studies/stability.py --quick
 	$(PY) studies/bench_startup.py --quick
+	$(PY) studies/m4_paper.py --quick
+	$(PY) studies/bench_sweep.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

@@ -5,7 +5,11 @@
 periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic database or a simulation result.
 
 ``wecss run [SCENE.toml] [-o RESULT.nc]`` simulates a scene (without one: the embedded default, M4 134 in a
-JONSWAP sea) and writes the result and a PNG summary plot; ``wecss plot RESULT.nc`` plots a result.
+JONSWAP sea) and writes the result and a PNG summary plot; ``--set sea.period=1.4`` overrides a scene value (dotted
+paths, validated by the scene). ``wecss plot RESULT.nc`` plots a result.
+
+``wecss sweep SWEEP.toml -o FOLDER`` runs a sweep (``wecss.sweep``): in this process, ``--processes N``, or on Dask
+(``--dask``, ``--scheduler tcp://...``); started again it resumes; ``--retry-failed`` runs the failed cases again.
 """
 
 from __future__ import annotations
@@ -128,12 +132,15 @@ def _summary(ds: Any) -> str:
     return "\n".join(lines)
 
 
-def _run(scene_path: str | None, output: str | None, png: str | None, quiet: bool) -> int:
+def _run(
+    scene_path: str | None, output: str | None, png: str | None, quiet: bool, overrides: Sequence[str] = ()
+) -> int:
     from .results import plot_timeseries, save
     from .sim import Scene, default_scene_path, simulate
+    from .sweep import apply_overrides
 
     path = Path(scene_path) if scene_path else default_scene_path()
-    scene = Scene.from_toml(path)
+    scene = apply_overrides(Scene.from_toml(path), overrides)
     out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
     picture = Path(png) if png else out.with_suffix(".png")
     check_outputs({"result": (out, ".nc"), "picture": (picture, ".png")}, inputs=[path])
@@ -149,6 +156,29 @@ def _run(scene_path: str | None, output: str | None, png: str | None, quiet: boo
     print(_summary(ds))
     print(f"wrote {out}" + (f" and {picture}" if "time" in ds.dims else ""))
     return 0
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from .sweep import Sweep, run_sweep
+
+    sweep = Sweep.from_toml(args.sweep)
+    folder = Path(args.output) if args.output else Path(Path(args.sweep).stem)
+    print(f"sweep {sweep.name}: {len(sweep.cases)} cases into {folder}", file=sys.stderr)
+    ds = run_sweep(
+        sweep,
+        folder,
+        processes=args.processes,
+        dask=args.dask,
+        scheduler=args.scheduler,
+        workers=args.workers,
+        retry_failed=args.retry_failed,
+        progress=None if args.quiet else sys.stderr,
+    )
+    print(
+        f"{ds.attrs['cases_done']} done, {ds.attrs['cases_failed']} failed, {ds.attrs['cases_pending']} pending; "
+        f"wrote {folder / 'combined.nc'}"
+    )
+    return 1 if ds.attrs["cases_failed"] else 0
 
 
 def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) -> None:
@@ -207,6 +237,22 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("-o", "--output", help="result file (.nc); default: <scene name>.nc in this folder")
     run.add_argument("--png", help="summary plot (.png); default: next to the result")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    run.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="PATH=VALUE",
+        help="override a scene value (dotted path, TOML value), e.g. --set sea.period=1.4; repeatable",
+    )
+    sweep = sub.add_parser("sweep", help="run a sweep file (.toml): cases over sea states and designs, resumable")
+    sweep.add_argument("sweep", help="sweep file (.toml) with [sweep] axes and the base [scene]")
+    sweep.add_argument("-o", "--output", help="folder of the case files and combined.nc; default: the file's name")
+    sweep.add_argument("--processes", type=int, default=1, help="worker processes without Dask (default 1)")
+    sweep.add_argument("--dask", action="store_true", help="run on a Dask LocalCluster (one worker per core)")
+    sweep.add_argument("--workers", type=int, help="workers of the Dask LocalCluster (default: the cores)")
+    sweep.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. tcp://host:8786")
+    sweep.add_argument("--retry-failed", action="store_true", help="run the cases that failed before again")
+    sweep.add_argument("-q", "--quiet", action="store_true", help="no progress line")
     plot = sub.add_parser("plot", help="plot a result file's time series to PNG")
     plot.add_argument("result", help="result file (.nc)")
     plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")
@@ -220,10 +266,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "info":
             return _info(args.target)
         if args.command == "run":
-            return _run(args.scene, args.output, args.png, args.quiet)
+            return _run(args.scene, args.output, args.png, args.quiet, args.set)
+        if args.command == "sweep":
+            return _sweep(args)
         if args.command == "plot":
             return _plot(args.result, args.output)
-    except (ValueError, FileNotFoundError) as err:
+    except (ValueError, FileNotFoundError, ImportError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2
     except OSError as err:  # a file or folder the system refused: no traceback for a user of the command

@@ -2,6 +2,7 @@
 and the kernels that read them: the MFM equations of motion on arrays, compiled with numba when available."""
 
 from ._compile import CompiledScene as CompiledScene
+from ._compile import clear_compile_cache as clear_compile_cache
 from ._compile import compile_plant as compile_plant
 from ._compile import fit_request as fit_request
 from ._compile import make_waves as make_waves

@@ -9,6 +9,7 @@ frequencies) is written into ``notes`` and ends up in the result's attributes.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
 from dataclasses import dataclass, field
@@ -24,7 +25,7 @@ from ..devices import load as load_device
 from ..hydro import HydroData
 from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
-from ..scene import Scene, SceneError
+from ..scene import DeviceChoice, Radiation, Scene, SceneError, SeaState, Solver
 from ._plant import Plant, build_plant
 from ._radiation import (
     RadiationArrays,
@@ -297,6 +298,60 @@ def _added_mass_correction(
     )  # fmt: skip
 
 
+PARTS_CACHE_SIZE: int = 8
+"""Devices (with their hydrodynamic coupling and equilibrium) and radiation memories kept in memory per process by
+:func:`compile_plant`, so that the cases of a sweep that change only the sea state, the controller or the outputs
+build them once per worker."""
+
+
+def _file_stamp(value: str | None) -> tuple[str | None, int]:
+    """A name and, when it names a file, the file's modification time (a changed file is built again)."""
+    if value is None:
+        return value, 0
+    path = Path(value)
+    return value, path.stat().st_mtime_ns if path.is_file() else 0
+
+
+@functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
+def _device_parts(
+    name: tuple[str, int], hydro: tuple[str | None, int]
+) -> tuple[Device, HydroCoupling, StaticModel, np.ndarray, np.ndarray]:
+    """The device, its coupling to the database, its statics, equilibrium and static stiffness (cached; the arrays
+    are read-only)."""
+    device = _device(Scene(device=DeviceChoice(name=name[0], hydro=hydro[0]), sea=_CALM, solver=_CALM_SOLVER))
+    try:
+        coupling = device.coupling(hydro[0])
+    except FileNotFoundError as err:
+        raise SceneError(f"device.hydro: {err}") from None
+    statics = StaticModel(device.model, coupling.hydro.g, coupling, device.ptos)
+    q0 = statics.equilibrium()
+    stiffness = statics.stiffness(q0)
+    q0.flags.writeable = False
+    stiffness.flags.writeable = False
+    return device, coupling, statics, q0, stiffness
+
+
+_CALM = SeaState(kind="calm", period=None, duration=10.0, ramp=0.0)
+_CALM_SOLVER = Solver(dt=0.01)
+
+
+@functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
+def _radiation_parts(
+    name: tuple[str, int], hydro: tuple[str | None, int], radiation: Radiation, frequency: bool, dt: float
+) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
+    """The radiation memory of a device for a step (cached)."""
+    coupling = _device_parts(name, hydro)[1]
+    solver = Solver(method="frequency" if frequency else "beeman", dt=dt)
+    scene = Scene(device=DeviceChoice(name=name[0], hydro=hydro[0]), sea=_CALM, solver=solver, radiation=radiation)
+    return make_radiation(scene, coupling, dt)
+
+
+def clear_compile_cache() -> None:
+    """Forget the devices and radiation memories :func:`compile_plant` keeps in memory."""
+    _device_parts.cache_clear()
+    _radiation_parts.cache_clear()
+
+
 def compile_plant(scene: Scene) -> CompiledScene:
     """Build everything the time loop needs from ``scene`` but the controller: the plant without PTO gains (an open
     plant, the PTO forces its inputs). ``wecss.control.compile_scene`` attaches the scene's controller.
@@ -306,11 +361,8 @@ def compile_plant(scene: Scene) -> CompiledScene:
     SceneError
         On unknown names, missing files, periods outside the database.
     """
-    device = _device(scene)
-    try:
-        coupling = device.coupling(scene.device.hydro)
-    except FileNotFoundError as err:
-        raise SceneError(f"device.hydro: {err}") from None
+    name, hydro_name = _file_stamp(scene.device.name), _file_stamp(scene.device.hydro)
+    device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name)
     hydro = coupling.hydro
     dt = scene.dt
     notes: list[str] = []
@@ -327,7 +379,8 @@ def compile_plant(scene: Scene) -> CompiledScene:
                 "wave components outside the database's frequencies left out: "
                 f"{excitation.outside_share:.2e} of the variance"
             )
-    radiation, summary, fit = make_radiation(scene, coupling, dt)
+    frequency = scene.solver.method == "frequency"
+    radiation, summary, fit = _radiation_parts(name, hydro_name, scene.radiation, frequency, dt)
     if scene.solver.method == "frequency":
         notes.append(
             "radiation memory not used: the frequency-domain solution takes A(omega) and B(omega) from the database"
@@ -354,8 +407,6 @@ def compile_plant(scene: Scene) -> CompiledScene:
             f"dt < {2.5 / summary.max_pole:.3g} s (given {dt:.3g} s); use 'beeman' (exact in the radiation states) "
             "or a smaller step"
         )
-    statics = StaticModel(device.model, hydro.g, coupling, device.ptos)
-    q0 = statics.equilibrium()
     model = device.model
     bounded = [
         model.coordinate_names.index(f"{j.name}__{j.labels[0]}") for j in model.ordered_joints if j.kind == "revolute"
@@ -375,8 +426,8 @@ def compile_plant(scene: Scene) -> CompiledScene:
         control_context=None,
         linear_controller=False,
         statics=statics,
-        q0=q0,
-        stiffness=statics.stiffness(q0),
+        q0=q0.copy(),
+        stiffness=static_stiffness.copy(),
         dt=dt,
         n_steps=scene.n_steps,
         bounded=np.asarray(bounded, dtype=np.int64),
