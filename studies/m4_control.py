@@ -28,6 +28,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from _common import ROOT, write_section
 
+from wecss.devices import Device
 from wecss.results import capture_width_ratio
 from wecss.sim import Scene, SimulationDiverged, default_scene_path, simulate
 
@@ -99,8 +100,8 @@ def run_all(device: str, periods: tuple[float, ...], duration: str, controllers:
 
 
 def pto_names(device: str) -> list[str]:
-    """The PTOs of ``device`` in the order of the results."""
-    return [str(n) for n in simulate(m4_scene(device, 1.2, "2 Tp", CONTROLLERS["damping 6"], "linear")).pto.values]
+    """The PTOs of ``device`` (a spec file), in the order of the results."""
+    return [p.name for p in Device.from_spec(device).ptos]
 
 
 def table(rows: list[dict], pto_names: list[str]) -> str:

@@ -228,6 +228,8 @@ class LinearModel:
         c = np.zeros((system.noutputs, 2 * nv + nz))
         c[:, : 2 * nv] = np.asarray(system.C)[:, : 2 * nv]
         labels = list(system.state_labels)[: 2 * nv]
+        import control  # lazy: python-control pulls in matplotlib and scipy.signal
+
         reduced = control.ss(
             a, bmat, c, system.D, states=[*labels, *(f"radiation_{k}" for k in range(nz))],
             inputs=list(system.input_labels), outputs=list(system.output_labels), name=system.name,
