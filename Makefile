@@ -13,7 +13,7 @@ STAMP := $(VENV)/.installed
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast]"
+	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,fatigue]"
 	touch $(STAMP)
 
 demo: $(STAMP)
