@@ -3,4 +3,7 @@
 from ._catalogue import available as available
 from ._catalogue import load as load
 from ._device import Device as Device
+from ._members import HotSpot as HotSpot
+from ._members import Member as Member
+from ._members import Section as Section
 from ._spec import DeviceSpecError as DeviceSpecError
