@@ -1,0 +1,99 @@
+"""Bending natural frequencies of a straight Euler-Bernoulli beam by finite elements (cubic Hermite elements,
+consistent mass), with point supports, a tip mass and a tip spring: the first bending mode of an arm carrying a
+float, to set beside a structural model's modal frequencies."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import eigh
+
+
+def beam_frequencies(
+    length: float,
+    bending_stiffness: float,
+    mass_per_length: float,
+    *,
+    pinned: tuple[float, ...] = (),
+    clamped: tuple[float, ...] = (),
+    tip_mass: float = 0.0,
+    tip_spring: float = 0.0,
+    n_elements: int = 96,
+    n_modes: int = 3,
+) -> np.ndarray:
+    """Lowest bending natural frequencies [Hz] of a beam on [0, length] in one plane.
+
+    Parameters
+    ----------
+    length : float
+        [m].
+    bending_stiffness : float
+        E I [N m^2].
+    mass_per_length : float
+        [kg/m].
+    pinned, clamped : tuple of float
+        Positions of supports that hold the deflection (pinned) or deflection and slope (clamped) [m]; they are
+        moved to the nearest node. Together with ``tip_spring`` they must stop rigid-body motion (an under-supported
+        beam returns frequencies near zero).
+    tip_mass : float
+        Point mass at ``length`` [kg].
+    tip_spring : float
+        Translational spring to ground at ``length`` [N/m] (e.g. a float's hydrostatic stiffness).
+    n_elements, n_modes : int
+
+    Raises
+    ------
+    ValueError
+        On non-positive length, stiffness or mass per length, negative tip mass or spring, or supports off the beam.
+    """
+    for name, value in (
+        ("length", length),
+        ("bending_stiffness", bending_stiffness),
+        ("mass_per_length", mass_per_length),
+    ):
+        if not value > 0:
+            raise ValueError(f"{name} must be positive, got {value!r}")
+    if tip_mass < 0 or tip_spring < 0:
+        raise ValueError(f"tip_mass and tip_spring must not be negative, got {tip_mass!r}, {tip_spring!r}")
+    for x in (*pinned, *clamped):
+        if not 0 <= x <= length:
+            raise ValueError(f"support at {x} m is off the beam (0 .. {length} m)")
+    h = length / n_elements
+    ei, mu = bending_stiffness, mass_per_length
+    k_e = (
+        ei
+        / h**3
+        * np.array(
+            [
+                [12, 6 * h, -12, 6 * h],
+                [6 * h, 4 * h**2, -6 * h, 2 * h**2],
+                [-12, -6 * h, 12, -6 * h],
+                [6 * h, 2 * h**2, -6 * h, 4 * h**2],
+            ]
+        )
+    )
+    m_e = (
+        mu
+        * h
+        / 420
+        * np.array(
+            [
+                [156, 22 * h, 54, -13 * h],
+                [22 * h, 4 * h**2, 13 * h, -3 * h**2],
+                [54, 13 * h, 156, -22 * h],
+                [-13 * h, -3 * h**2, -22 * h, 4 * h**2],
+            ]
+        )
+    )
+    n_dof = 2 * (n_elements + 1)
+    k = np.zeros((n_dof, n_dof))
+    m = np.zeros((n_dof, n_dof))
+    for e in range(n_elements):
+        idx = slice(2 * e, 2 * e + 4)
+        k[idx, idx] += k_e
+        m[idx, idx] += m_e
+    m[-2, -2] += tip_mass
+    k[-2, -2] += tip_spring
+    fixed = {2 * round(x / h) for x in pinned} | {2 * round(x / h) + d for x in clamped for d in (0, 1)}
+    free = [i for i in range(n_dof) if i not in fixed]
+    values = eigh(k[np.ix_(free, free)], m[np.ix_(free, free)], eigvals_only=True)
+    return np.sqrt(values[:n_modes]) / (2 * np.pi)
