@@ -42,6 +42,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/linear_vs_nonlinear.py --quick
 	$(PY) studies/control_example.py --quick
 	$(PY) studies/control_table.py --quick
+	$(PY) studies/notc.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

@@ -32,6 +32,14 @@ def test_cantilever_with_a_tip_mass_matches_its_frequency_equation():
     assert beam_frequencies(L, EI, MU, clamped=(0.0,), tip_mass=tip)[0] == pytest.approx(_f(root), rel=1e-6)
 
 
+def test_a_stiff_beam_on_a_pin_and_a_spring_is_a_rigid_pendulum():
+    k, tip = 4e4, 500.0  # spring at L / 2, mass at the tip; rigid rotation about the pin
+    inertia = tip * L**2 + MU * L**3 / 3
+    rigid = np.sqrt(k * (L / 2) ** 2 / inertia) / (2 * np.pi)
+    f = beam_frequencies(L, 1e6 * EI, MU, pinned=(0.0,), springs=((L / 2, k),), tip_mass=tip)[0]
+    assert f == pytest.approx(rigid, rel=1e-5)
+
+
 def test_bad_inputs():
     with pytest.raises(ValueError, match="bending_stiffness"):
         beam_frequencies(L, 0.0, MU, clamped=(0.0,))

@@ -17,6 +17,7 @@ def beam_frequencies(
     clamped: tuple[float, ...] = (),
     tip_mass: float = 0.0,
     tip_spring: float = 0.0,
+    springs: tuple[tuple[float, float], ...] = (),
     n_elements: int = 96,
     n_modes: int = 3,
 ) -> np.ndarray:
@@ -38,6 +39,8 @@ def beam_frequencies(
         Point mass at ``length`` [kg].
     tip_spring : float
         Translational spring to ground at ``length`` [N/m] (e.g. a float's hydrostatic stiffness).
+    springs : tuple of (position [m], stiffness [N/m])
+        Further translational springs to ground (e.g. a PTO cylinder's stiffness across the beam), at the nearest node.
     n_elements, n_modes : int
 
     Raises
@@ -50,11 +53,14 @@ def beam_frequencies(
         ("bending_stiffness", bending_stiffness),
         ("mass_per_length", mass_per_length),
     ):
-        if not value > 0:
-            raise ValueError(f"{name} must be positive, got {value!r}")
-    if tip_mass < 0 or tip_spring < 0:
-        raise ValueError(f"tip_mass and tip_spring must not be negative, got {tip_mass!r}, {tip_spring!r}")
-    for x in (*pinned, *clamped):
+        if not (value > 0 and np.isfinite(value)):
+            raise ValueError(f"{name} must be positive and finite, got {value!r}")
+    if not (np.isfinite(tip_mass) and np.isfinite(tip_spring)) or tip_mass < 0 or tip_spring < 0:
+        raise ValueError(f"tip_mass and tip_spring must be finite and not negative, got {tip_mass!r}, {tip_spring!r}")
+    for _x, stiffness in springs:
+        if not (np.isfinite(stiffness) and stiffness >= 0):
+            raise ValueError(f"spring stiffness must be finite and not negative, got {stiffness!r}")
+    for x in (*pinned, *clamped, *(x for x, _ in springs)):
         if not 0 <= x <= length:
             raise ValueError(f"support at {x} m is off the beam (0 .. {length} m)")
     h = length / n_elements
@@ -93,6 +99,8 @@ def beam_frequencies(
         m[idx, idx] += m_e
     m[-2, -2] += tip_mass
     k[-2, -2] += tip_spring
+    for x, stiffness in springs:
+        k[2 * round(x / h), 2 * round(x / h)] += stiffness
     fixed = {2 * round(x / h) for x in pinned} | {2 * round(x / h) + d for x in clamped for d in (0, 1)}
     free = [i for i in range(n_dof) if i not in fixed]
     values = eigh(k[np.ix_(free, free)], m[np.ix_(free, free)], eigvals_only=True)
