@@ -36,8 +36,14 @@ def test_a_stiff_beam_on_a_pin_and_a_spring_is_a_rigid_pendulum():
     k, tip = 4e4, 500.0  # spring at L / 2, mass at the tip; rigid rotation about the pin
     inertia = tip * L**2 + MU * L**3 / 3
     rigid = np.sqrt(k * (L / 2) ** 2 / inertia) / (2 * np.pi)
-    f = beam_frequencies(L, 1e6 * EI, MU, pinned=(0.0,), springs=((L / 2, k),), tip_mass=tip)[0]
-    assert f == pytest.approx(rigid, rel=1e-5)
+    stiff = 100 * EI
+    # the beam's own flexibility lowers it by about (f / f_bending)^2, f_bending of the pinned-free beam with its tip
+    # mass on a rigid support at L / 2: well over 100 times f, so the correction is below 1e-4
+    bending = beam_frequencies(L, stiff, MU, pinned=(0.0, L / 2), tip_mass=tip)[0]
+    assert (rigid / bending) ** 2 < 1e-4
+    f = beam_frequencies(L, stiff, MU, pinned=(0.0,), springs=((L / 2, k),), tip_mass=tip)[0]
+    assert f == pytest.approx(rigid, rel=1e-4)
+    assert f < rigid  # flexibility only lowers it
 
 
 def test_bad_inputs():
@@ -45,3 +51,5 @@ def test_bad_inputs():
         beam_frequencies(L, 0.0, MU, clamped=(0.0,))
     with pytest.raises(ValueError, match="off the beam"):
         beam_frequencies(L, EI, MU, pinned=(3.0,))
+    with pytest.raises(ValueError, match="rigid-body motion"):
+        beam_frequencies(L, EI, MU, pinned=(0.0,))

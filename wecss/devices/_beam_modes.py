@@ -33,8 +33,7 @@ def beam_frequencies(
         [kg/m].
     pinned, clamped : tuple of float
         Positions of supports that hold the deflection (pinned) or deflection and slope (clamped) [m]; they are
-        moved to the nearest node. Together with ``tip_spring`` they must stop rigid-body motion (an under-supported
-        beam returns frequencies near zero).
+        moved to the nearest node. Together with the springs they must stop rigid-body motion.
     tip_mass : float
         Point mass at ``length`` [kg].
     tip_spring : float
@@ -46,7 +45,8 @@ def beam_frequencies(
     Raises
     ------
     ValueError
-        On non-positive length, stiffness or mass per length, negative tip mass or spring, or supports off the beam.
+        On non-positive length, stiffness or mass per length, negative tip mass or spring, supports off the beam, or
+        supports that leave the beam free to move as a rigid body.
     """
     for name, value in (
         ("length", length),
@@ -103,5 +103,14 @@ def beam_frequencies(
         k[2 * round(x / h), 2 * round(x / h)] += stiffness
     fixed = {2 * round(x / h) for x in pinned} | {2 * round(x / h) + d for x in clamped for d in (0, 1)}
     free = [i for i in range(n_dof) if i not in fixed]
-    values = eigh(k[np.ix_(free, free)], m[np.ix_(free, free)], eigvals_only=True)
+    # the reciprocal problem M x = (1 / omega^2) K x: its largest values (the lowest modes) come with full relative
+    # accuracy, where the direct problem loses the low modes of a stiff beam to round-off of its highest ones
+    k_ff = k[np.ix_(free, free)]
+    try:
+        np.linalg.cholesky(k_ff)
+    except np.linalg.LinAlgError:
+        raise ValueError("the supports and springs do not stop rigid-body motion of the beam") from None
+    values = np.sort(1.0 / eigh(m[np.ix_(free, free)], k_ff, eigvals_only=True))
+    if not np.all(np.isfinite(values)) or values[0] <= 0:
+        raise ValueError("the beam's eigenproblem is too ill-conditioned (springs far softer than the beam?)")
     return np.sqrt(values[:n_modes]) / (2 * np.pi)
