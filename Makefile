@@ -13,7 +13,7 @@ STAMP := $(VENV)/.installed
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,dask]"
+	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,dask,fatigue]"
 	touch $(STAMP)
 
 demo: $(STAMP)
@@ -49,6 +49,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/bench_startup.py --quick
 	$(PY) studies/m4_paper.py --quick
 	$(PY) studies/bench_sweep.py --quick
+	$(PY) studies/notc.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

@@ -110,6 +110,21 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "wave_elevation": {"long_name": "undisturbed wave elevation at the origin", "units": "m"},
     "body_position": {"long_name": "position of the body's centre of mass, world frame", "units": "m"},
     "body_rotation": {"long_name": "rotation vector of the body from its reference orientation", "units": "rad"},
+    "joint_reaction_force": {
+        "long_name": "reaction force of the joint on its child's subtree, world axes",
+        "units": "N",
+    },
+    "joint_reaction_moment": {
+        "long_name": "reaction moment of the joint on its child's subtree about the joint point, world axes",
+        "units": "N m",
+    },
+    "joint_reaction_force_local": {"long_name": "joint reaction force, axes of the child body", "units": "N"},
+    "joint_reaction_moment_local": {"long_name": "joint reaction moment, axes of the child body", "units": "N m"},
+    "pto_end_force": {"long_name": "PTO force on the body at each end, at the attachment, world axes", "units": "N"},
+    "pto_end_moment": {
+        "long_name": "PTO moment (joint PTO torque) on the body at each end, world axes",
+        "units": "N m",
+    },
 }
 """Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
 

@@ -14,6 +14,7 @@ from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate
 from ._kernels import end_stop_force as end_stop_force
 from ._kernels import hydro_velocity as hydro_velocity
+from ._kernels import hydrostatic_force as hydrostatic_force
 from ._kernels import integrate_configuration as integrate_configuration
 from ._kernels import kinematics as kinematics
 from ._kernels import normalise_quaternions as normalise_quaternions

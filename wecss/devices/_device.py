@@ -14,6 +14,7 @@ from ..constants import GRAVITY
 from ..hydro import HydroData
 from ..hydro import load as load_hydro
 from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Multibody, StaticModel
+from ._members import Member, read_members
 from ._spec import DeviceSpecError, build_model, read_spec
 
 
@@ -34,6 +35,8 @@ class Device:
         Every number that is not published, with its reason.
     spec : dict
         The spec it was built from (for round trips into result attributes).
+    members : tuple of Member
+        Beam members for stress recovery (empty when the spec declares none).
     """
 
     name: str
@@ -43,6 +46,7 @@ class Device:
     hydro_source: str | None
     assumptions: Mapping[str, str]
     spec: Mapping[str, Any] = field(repr=False)
+    members: tuple[Member, ...] = ()
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -61,7 +65,24 @@ class Device:
         if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out"))):
             hydro = str((folder / hydro).resolve())
         assumptions = {str(k): str(v) for k, v in spec.get("assumptions", {}).items()}
-        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec)
+        try:
+            members = read_members(spec["name"], list(spec.get("members", [])), list(model.body_names))
+        except ValueError as err:
+            raise DeviceSpecError(str(err)) from None
+        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members)
+
+    def member(self, name: str) -> Member:
+        """The beam member of that name.
+
+        Raises
+        ------
+        KeyError
+            If there is none (the message lists the members).
+        """
+        for m in self.members:
+            if m.name == name:
+                return m
+        raise KeyError(f"device {self.name!r} has no member {name!r}; members: {[m.name for m in self.members]}")
 
     # --- hydrodynamics ----------------------------------------------------------------------------
     def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:

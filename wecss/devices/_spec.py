@@ -17,6 +17,10 @@ Spec layout (TOML; the same keys as a dict)::
     [[ptos]]                    # kind = "joint" (joint, rest) or "actuator" (body_a, point_a, body_b, point_b,
     ...                         # rest_length); damping, stiffness, force_limit, stroke_limit,
                                 # end_stop_stiffness, end_stop_damping (an end stop beyond the stroke limit)
+    [[members]]                 # beam members for stress recovery (optional): name, body, start, end [m] (world,
+    ...                         # reference configuration), section = {kind = "tube", outer_diameter, thickness} |
+                                # {kind = "box", width, height, thickness} | {kind = "given", area, iy, iz, wy, wz, wt},
+                                # hot_spots = [{name, at [m from start], y, z [m on the section], scf}]
 """
 
 from __future__ import annotations
@@ -28,7 +32,7 @@ from typing import Any
 
 from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Multibody
 
-_TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos"}
+_TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos", "members"}
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
 _LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}

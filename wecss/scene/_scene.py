@@ -39,7 +39,7 @@ SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation"
 SOLVER_METHODS = ("beeman", "rk4", "reference", "linear", "frequency")
 LINEAR_HOLDS = ("foh", "zoh")
 RADIATION_METHODS = ("convolution", "state_space", "none")
-OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses")
+OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses", "loads")
 DEFAULT_OUTPUTS = ("motion", "pto", "excitation", "elevation", "poses")
 
 
@@ -348,8 +348,9 @@ class Outputs:
 
     Attributes
     ----------
-    variables : sequence of {"motion", "pto", "excitation", "radiation", "elevation", "poses"}
-        Groups of time series; empty with ``statistics_only``.
+    variables : sequence of {"motion", "pto", "excitation", "radiation", "elevation", "poses", "loads"}
+        Groups of time series; empty with ``statistics_only``. ``loads`` (not in the default) adds the joint
+        reactions and the PTO loads on both ends, recovered from the record after the run.
     every : int
         Keep every k-th step.
     statistics_only : bool

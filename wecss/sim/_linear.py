@@ -64,7 +64,7 @@ def simulate_linear(
     exc = compiled.excitation_at(time)
     force = exc @ model.hydro_jacobian  # generalised excitation (n_t, nv)
     stroke0 = model.pto_stroke
-    with_radiation = "radiation" in compiled.scene.outputs.variables
+    with_radiation = bool({"radiation", "loads"} & set(compiled.scene.outputs.variables))  # loads need the memory
     limited = bool(np.any(np.isfinite(p.pto_force_limit)) or np.any(np.isfinite(p.pto_stroke_limit)))
     applied = np.zeros((time.size, n_pto))  # the controller's force held over each step (not folded in)
     wanted = np.zeros((time.size, n_pto))  # what the controller asked for, before the force limit

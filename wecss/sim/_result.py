@@ -22,6 +22,7 @@ from ..control import PowerBound, power_bound
 from ..hydro import split_dof
 from ..multibody import difference
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
+from ._loads import recover_loads
 
 
 @dataclass
@@ -227,6 +228,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         data["body_rotation"] = (("time", "body", "axis"), rotation)
         coords["body"] = list(compiled.device.model.body_names)
         coords["axis"] = ["x", "y", "z"]
+    closure = _add_loads(data, coords, compiled, record) if "loads" in groups and n_t else None
     count = max(1.0, float(record.stats[2, 0])) if record.stats.size else 1.0
     if pto_names:
         data["mean_pto_power"] = (("pto",), record.stats[0] / count)
@@ -280,12 +282,32 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     attrs.update({f"controller_{k}": v for k, v in report.items()})
     attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)
     attrs.update(sea_state_attrs(compiled))
+    if closure is not None:
+        attrs["loads_closure_residual"] = closure
     if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:
         bound = power_bound_of(compiled)
         data["power_bound"] = (("pto",), bound.per_pto)
         attrs["share_of_power_bound"] = float(np.sum(data["mean_pto_power"][1]) / bound.total)
     ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return apply_attrs(ds)
+
+
+def _add_loads(data: dict[str, Any], coords: dict[str, Any], compiled: CompiledScene, record: Record) -> float:
+    """The ``loads`` group (see ``wecss.sim._loads``); returns the closure residual."""
+    loads = recover_loads(
+        compiled, record.q, record.v, record.a, (record.x, record.xd, record.f), record.rad + record.exc
+    )
+    data["joint_reaction_force"] = (("time", "joint", "axis"), loads.joint_force)
+    data["joint_reaction_moment"] = (("time", "joint", "axis"), loads.joint_moment)
+    data["joint_reaction_force_local"] = (("time", "joint", "axis"), loads.joint_force_local)
+    data["joint_reaction_moment_local"] = (("time", "joint", "axis"), loads.joint_moment_local)
+    coords["joint"] = [j.name for j in compiled.device.model.ordered_joints]
+    coords["axis"] = ["x", "y", "z"]
+    if compiled.device.ptos:
+        data["pto_end_force"] = (("time", "pto", "pto_end", "axis"), loads.pto_body_force)
+        data["pto_end_moment"] = (("time", "pto", "pto_end", "axis"), loads.pto_body_moment)
+        coords["pto_end"] = ["a", "b"]
+    return loads.closure
 
 
 def power_bound_of(compiled: CompiledScene) -> PowerBound:

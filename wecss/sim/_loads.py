@@ -1,0 +1,153 @@
+"""Loads recovered from a run's record after the run: joint reactions and PTO loads on both of their bodies.
+
+Nothing in the integrators changes: at every saved step the record holds the configuration q, velocities v,
+accelerations v_dot, PTO forces and the excitation and radiation-memory forces. The applied Cartesian loads are
+rebuilt from them exactly as the equations of motion use them (gravity, buoyancy and hydrostatic restoring, wave
+excitation, radiation memory, the PTO forces with their end stops), and a Newton-Euler sweep from the leaves
+(``wecss.multibody.joint_reactions``) gives the wrench each joint passes from the parent (or the ground) to its
+child's subtree. The infinite-frequency added mass acts through the mass matrix, as in the equations.
+
+Closure: the reactions are constraint loads, so on the free directions of the joints the Cartesian balance
+(M + A_inf) a + gyroscopic - applied, projected by B', must vanish; its largest value relative to the largest
+projected applied load is the result's ``loads_closure_residual`` (round-off for the nonlinear solvers, the
+linearisation error for the linear and frequency-domain runs, whose records follow the linear equations).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..compiled import CompiledScene, PtoKind, end_stop_force, hydrostatic_force, kinematics, world_jacobian
+from ..multibody import joint_reactions
+
+
+@dataclass
+class Loads:
+    """Recovered loads at the saved steps (world axes unless said).
+
+    Attributes
+    ----------
+    joint_force, joint_moment : (n_t, n_joint, 3)
+        Reaction on the child's subtree at each joint (order ``model.ordered_joints``), the moment about the joint
+        point (a revolute joint's hinge point, else the child's centre of mass), world axes [N, N m].
+    joint_force_local, joint_moment_local : (n_t, n_joint, 3)
+        The same in the joint's frame: the child body's axes [N, N m].
+    pto_body_force, pto_body_moment : (n_t, n_pto, 2, 3)
+        The PTO's load on its two ends (end 0: body_a, or the joint's child; end 1: body_b, or the joint's parent),
+        the force at the attachment point and the moment (a joint PTO's torque), world axes [N, N m]; zeros for an
+        end on the ground.
+    closure : float
+        Largest residual of the generalised balance over the largest generalised applied load [-].
+    """
+
+    joint_force: np.ndarray
+    joint_moment: np.ndarray
+    joint_force_local: np.ndarray
+    joint_moment_local: np.ndarray
+    pto_body_force: np.ndarray
+    pto_body_moment: np.ndarray
+    closure: float
+
+
+def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, force: np.ndarray):
+    """World Cartesian loads (6n,) of the PTO forces ``force`` (n_pto,) and each PTO's load on its two ends."""
+    p = compiled.plant
+    model = compiled.device.model
+    n = pos.shape[0]
+    cart = np.zeros(6 * n)
+    n_pto = force.shape[0]
+    end_force = np.zeros((n_pto, 2, 3))
+    end_moment = np.zeros((n_pto, 2, 3))
+    bodies = np.full((n_pto, 2), -1)
+    points = np.zeros((n_pto, 2, 3))
+    for k, pto in enumerate(compiled.device.ptos):
+        if p.pto_kind[k] == PtoKind.JOINT:
+            joint = next(j for j in model.joints if j.name == pto.joint)  # type: ignore[union-attr]
+            child = model.body_names.index(joint.child)
+            parent = model.parent[child]
+            assert joint.axis is not None
+            axis = rot[child] @ joint.axis
+            bodies[k] = (child, parent)
+            points[k] = pos[child]
+            if joint.kind == "revolute":
+                end_moment[k, 0], end_moment[k, 1] = force[k] * axis, -force[k] * axis
+            else:
+                end_force[k, 0], end_force[k, 1] = force[k] * axis, -force[k] * axis
+        else:
+            ends = []
+            for e, (body, point) in enumerate(
+                ((p.pto_body_a[k], p.pto_point_a[k]), (p.pto_body_b[k], p.pto_point_b[k]))
+            ):
+                bodies[k, e] = body
+                ends.append(point if body < 0 else pos[body] + rot[body] @ point)
+            d = ends[0] - ends[1]
+            d = d / np.linalg.norm(d)
+            points[k] = ends
+            end_force[k, 0], end_force[k, 1] = force[k] * d, -force[k] * d
+        for e in range(2):
+            i = bodies[k, e]
+            if i < 0:
+                end_force[k, e] = end_moment[k, e] = 0.0
+                continue
+            cart[6 * i : 6 * i + 3] += end_force[k, e]
+            cart[6 * i + 3 : 6 * i + 6] += end_moment[k, e] + np.cross(points[k, e] - pos[i], end_force[k, e])
+    return cart, end_force, end_moment
+
+
+def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.ndarray, pto: tuple, hydro: np.ndarray):
+    """Loads at each saved step.
+
+    Parameters
+    ----------
+    compiled : CompiledScene
+    q, v, a : ndarray (n_t, nq), (n_t, nv), (n_t, nv)
+        Configurations, velocities [m/s, rad/s] and accelerations [m/s^2, rad/s^2].
+    pto : tuple of ndarray (n_t, n_pto)
+        Stroke from rest x [m or rad], its rate [m/s or rad/s] and the PTO force f [N or N m] (without end stops).
+    hydro : ndarray (n_t, n_h)
+        Excitation plus radiation memory force on the hydro DOFs, world axes [N, N m].
+
+    Returns
+    -------
+    Loads
+    """
+    p = compiled.plant
+    model = compiled.device.model
+    n = len(model.bodies)
+    n_t, n_j, n_pto = q.shape[0], len(model.joints), len(compiled.device.ptos)
+    rigid = np.zeros((6 * n, 6 * n))
+    for i in range(n):
+        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = p.mass[i] * np.eye(3)
+        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = p.inertia[i]
+    zj, zp = (n_t, n_j, 3), (n_t, n_pto, 2, 3)
+    out = Loads(np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zp), np.zeros(zp), 0.0)
+    child_of_joint = list(model.order)
+    worst, scale = 0.0, 0.0
+    for t in range(n_t):
+        qq, vv = np.ascontiguousarray(q[t]), np.ascontiguousarray(v[t])
+        rot, pos, b, bdot, omega = kinematics(p, qq, vv)
+        world = hydrostatic_force(p, rot, pos)
+        world[p.hydro_index] += hydro[t]
+        x, xd, f = pto[0][t], pto[1][t], pto[2][t]
+        force = f + end_stop_force(p, x, xd) if n_pto else np.zeros(0)
+        cart, out.pto_body_force[t], out.pto_body_moment[t] = _pto_cartesian(compiled, rot, pos, force)
+        world += cart
+        applied = world.copy()  # world forces, body-axis moments (the convention of B and joint_reactions)
+        for i in range(n):
+            applied[6 * i + 3 : 6 * i + 6] = rot[i].T @ world[6 * i + 3 : 6 * i + 6]
+        f_j, m_j = joint_reactions(model, qq, vv, a[t], applied, p.total_mass, rigid)
+        out.joint_force[t], out.joint_moment[t] = f_j, m_j
+        for k, i in enumerate(child_of_joint):
+            out.joint_force_local[t, k] = rot[i].T @ f_j[k]
+            out.joint_moment_local[t, k] = rot[i].T @ m_j[k]
+        # closure on the free directions: B' ((M + A_inf)(B a + Bdot v) + gyroscopic - applied) = 0
+        gyro = np.zeros(6 * n)
+        for i in range(n):
+            gyro[6 * i + 3 : 6 * i + 6] = np.cross(omega[i], p.inertia[i] @ omega[i])
+        balance = b.T @ (p.total_mass @ (b @ a[t] + bdot @ vv) + gyro - applied)
+        worst = max(worst, float(np.max(np.abs(balance), initial=0.0)))
+        scale = max(scale, float(np.max(np.abs(world_jacobian(rot, b).T @ world), initial=0.0)))
+    out.closure = worst / scale if scale > 0 else worst
+    return out
