@@ -98,3 +98,11 @@ def test_os_errors_reach_the_user_without_a_traceback(tmp_path, capsys, monkeypa
     err = capsys.readouterr().err
     assert "Permission denied" in err and "Traceback" not in err
     assert Path(tmp_path / "r.nc").exists() is False
+
+
+def test_the_licence_file_states_the_licence_pyproject_declares():
+    import tomllib
+
+    root = Path(__file__).resolve().parents[1]
+    declared = tomllib.loads((root / "pyproject.toml").read_text())["project"]["license"]["text"]
+    assert (root / "LICENSE").read_text().startswith(f"{declared} License")

@@ -267,6 +267,10 @@ class Solver:
     max_corrector_iterations : int
     angle_bound : float
         A revolute joint angle beyond this [rad] stops the run (SimulationDiverged).
+    translation_bound : float or None
+        A body's centre of mass further than this [m] from its equilibrium position stops a nonlinear run
+        (SimulationDiverged), checked after each chunk of steps; default (None): 100 times the largest body size
+        V^(1/3) of the database (no bound when it has no displaced volumes).
     reference_rtol : float
         Relative tolerance of the reference solver.
     hold : {"foh", "zoh"} or None
@@ -279,6 +283,7 @@ class Solver:
     corrector_tol: float = 1e-6
     max_corrector_iterations: int = 30
     angle_bound: float = 1.5
+    translation_bound: float | None = None
     reference_rtol: float = 1e-10
     hold: str | None = None
 
@@ -288,11 +293,6 @@ class Solver:
             _choice("solver.hold", self.hold, LINEAR_HOLDS)
             if self.method != "linear":
                 raise SceneError(f"solver.hold applies to solver.method 'linear' only; got method {self.method!r}")
-
-    @property
-    def linear_hold(self) -> str:
-        """The hold of linear runs ("foh" unless ``hold`` says otherwise)."""
-        return self.hold or "foh"
         if not 0 < self.corrector_tol < 1:
             raise SceneError(f"solver.corrector_tol must lie in (0, 1); got {self.corrector_tol!r}")
         if not (isinstance(self.max_corrector_iterations, int) and self.max_corrector_iterations >= 1):
@@ -301,6 +301,14 @@ class Solver:
             )
         if not 0 < self.angle_bound <= 2 * math.pi:
             raise SceneError(f"solver.angle_bound must lie in (0, 2 pi] rad; got {self.angle_bound!r}")
+        bound = self.translation_bound
+        if bound is not None and not (isinstance(bound, int | float) and not isinstance(bound, bool) and bound > 0):
+            raise SceneError(f"solver.translation_bound must be a positive length [m] or absent; got {bound!r}")
+
+    @property
+    def linear_hold(self) -> str:
+        """The hold of linear runs ("foh" unless ``hold`` says otherwise)."""
+        return self.hold or "foh"
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,7 @@ from ..control import PowerBound, power_bound
 from ..hydro import split_dof
 from ..multibody import difference
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
+from ._guards import motion_notes, step_notes, wave_notes
 
 
 @dataclass
@@ -148,8 +149,8 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
     return out
 
 
-def _notes(compiled: CompiledScene, report: dict[str, Any]) -> list[str]:
-    notes = list(compiled.notes)
+def _notes(compiled: CompiledScene, report: dict[str, Any], q: np.ndarray) -> list[str]:
+    notes = [*compiled.notes, *step_notes(compiled), *wave_notes(compiled), *motion_notes(compiled, q)]
     if compiled.device.ptos and not compiled.linear_controller:
         steps = compiled.scene.control_steps
         notes.append(
@@ -273,7 +274,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "run_time_s": record.run_time,
         "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
         "seed": scene.sea.seed,
-        "notes": "; ".join(_notes(compiled, report)) or "none",
+        "notes": "; ".join(_notes(compiled, report, record.q)) or "none",
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
     }
