@@ -128,7 +128,7 @@ def test_translation_bound_stops_a_run_and_names_the_setting():
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, "far", True])
 def test_translation_bound_must_be_a_positive_length(bad):
-    with pytest.raises(SceneError, match=r"solver\.translation_bound must be a positive length"):
+    with pytest.raises(SceneError, match=r"solver\.translation_bound must be (a positive length|a number)"):
         scene(solver={"translation_bound": bad})
 
 

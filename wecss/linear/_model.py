@@ -398,7 +398,13 @@ def linearize(
     ValueError
         If ``radiation`` is given for a scene whose memory is not a state-space model (its A_inf correction
         would not belong to those states), or its DOFs differ from the database's.
+    TypeError
+        If ``compiled`` is not a CompiledScene.
     """
+    if not isinstance(compiled, CompiledScene):
+        raise TypeError(
+            f"linearize takes a CompiledScene (wecss.sim.compile_scene(scene)); got {type(compiled).__name__}"
+        )
     if radiation is not None and compiled.radiation_summary.method not in ("state_space", "none"):
         raise ValueError(
             "compile the scene with radiation.method = 'state_space' to linearise it with radiation states (its "
