@@ -20,6 +20,7 @@ from ..scene import SceneError
 from ._control import ControlLoop
 from ._guards import check_rk4, farthest_body, stiff_pto_hint, translation_bound
 from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
+from ._progress import Progress
 from ._result import Record, stats_start, window_statistics
 
 CHUNK_STEPS: int = 2000
@@ -50,29 +51,6 @@ class SimulationDiverged(RuntimeError):
 
 class PtoLimitExceeded(SimulationDiverged):
     """A PTO stroke passed its ``stroke_limit`` on a PTO without an end stop (the device spec says to stop)."""
-
-
-class _Progress:
-    def __init__(self, total: int, enabled: bool) -> None:
-        self.total = total
-        self.enabled = enabled
-        self.start = _time.perf_counter()
-
-    def update(self, done: int) -> None:
-        if not self.enabled:
-            return
-        elapsed = _time.perf_counter() - self.start
-        rate = done / elapsed if elapsed > 0 else 0.0
-        width = 30
-        filled = int(width * done / self.total)
-        print(
-            f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} steps  {rate:,.0f} steps/s",
-            end="",
-            file=sys.stderr,
-            flush=True,
-        )
-        if done >= self.total:
-            print(file=sys.stderr)
 
 
 def _diverged(
@@ -168,7 +146,7 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     def full_state() -> np.ndarray:
         return np.concatenate([q, v, z.real, z.imag])
 
-    bar = _Progress(n, progress)
+    bar = Progress(n, progress)
     start = _time.perf_counter()
     done = 0
     calm = compiled.excitation is None
