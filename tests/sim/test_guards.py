@@ -139,3 +139,17 @@ def test_solver_settings_are_checked(field, bad):
     """These checks sat after a return (dead code) before issue 18: any value was accepted."""
     with pytest.raises(SceneError, match=rf"solver\.{field}"):
         scene(solver={field: bad})
+
+
+def test_wave_elevation_is_recorded_as_applied_with_the_ramp():
+    """The recorded elevation is the undisturbed one times the cosine ramp (1 - cos(pi t / T_r)) / 2 over the ramp
+    T_r, which the excitation also carries."""
+    compiled = compile_scene(
+        scene(sea={"duration": 6.0, "ramp": 2.0}, radiation={"method": "none"}, outputs={"variables": ["elevation"]})
+    )
+    ds = simulate(compiled)
+    t = ds.time.values
+    undisturbed = compiled.waves.elevation(t)
+    ramp = np.where(t >= 2.0, 1.0, 0.5 * (1 - np.cos(np.pi * t / 2.0)))
+    np.testing.assert_allclose(ds.wave_elevation.values, undisturbed * ramp, rtol=0, atol=1e-12)
+    assert ds.wave_elevation.values[0] == 0.0 and "with the start ramp" in ds.wave_elevation.attrs["long_name"]

@@ -21,7 +21,7 @@ from ..compiled import JIT, CompiledScene, hydro_velocity, poses
 from ..control import PowerBound, power_bound
 from ..hydro import split_dof
 from ..multibody import difference
-from ..waves import energy_flux, energy_period, group_velocity, mean_period
+from ..waves import Ramp, energy_flux, energy_period, group_velocity, mean_period
 from ._guards import motion_notes, step_notes, wave_notes
 
 
@@ -221,6 +221,8 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         )
     if "elevation" in groups and n_t:
         eta = compiled.waves.elevation(record.time) if compiled.waves is not None else np.zeros(n_t)
+        if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
+            eta = eta * Ramp(scene.sea.ramp_s)(record.time)
         data["wave_elevation"] = (("time",), eta)
     if "poses" in groups and n_t:
         position, rotation = poses(compiled.plant, np.ascontiguousarray(record.q))
