@@ -153,3 +153,27 @@ def test_wave_elevation_is_recorded_as_applied_with_the_ramp():
     ramp = np.where(t >= 2.0, 1.0, 0.5 * (1 - np.cos(np.pi * t / 2.0)))
     np.testing.assert_allclose(ds.wave_elevation.values, undisturbed * ramp, rtol=0, atol=1e-12)
     assert ds.wave_elevation.values[0] == 0.0 and "with the start ramp" in ds.wave_elevation.attrs["long_name"]
+
+
+def test_body_to_body_radiation_switch():
+    """radiation.body_to_body = false: the compiled database has no added mass or damping between DOFs of
+    different bodies (each body's own blocks unchanged), the notes say so, and the run differs from the default."""
+    from wecss.hydro import split_dof
+
+    sea = {"duration": 6.0, "ramp": 2.0}
+    on = compile_scene(scene(sea=sea, radiation={"method": "none"}))
+    off = compile_scene(scene(sea=sea, radiation={"method": "none", "body_to_body": False}))
+    ds_on, ds_off = on.hydro.dataset, off.hydro.dataset
+    bodies = np.array([split_dof(str(d))[0] for d in ds_off.influenced_dof.values])
+    same = np.equal.outer(bodies, bodies)
+    assert (~same).any()
+    for name in ("added_mass", "radiation_damping"):
+        assert np.all(ds_off[name].values[:, ~same] == 0.0)
+        np.testing.assert_array_equal(ds_off[name].values[:, same], ds_on[name].values[:, same])
+        assert np.any(ds_on[name].values[:, ~same] != 0.0)
+    assert np.all(ds_off.added_mass_inf.values[~same] == 0.0)
+    run_off = simulate(off)
+    assert "radiation between bodies left out" in run_off.attrs["notes"]
+    assert not np.allclose(run_off.pto_angle.values, simulate(on).pto_angle.values, rtol=1e-6, atol=0)
+    with pytest.raises(SceneError, match=r"radiation\.body_to_body must be bool"):
+        scene(radiation={"body_to_body": "no"})

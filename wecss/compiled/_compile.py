@@ -21,7 +21,7 @@ from .. import waves as wv
 from ..devices import Device
 from ..devices import available as available_devices
 from ..devices import load as load_device
-from ..hydro import HydroData
+from ..hydro import HydroData, without_body_interactions
 from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
 from ..scene import Scene, SceneError
@@ -307,13 +307,17 @@ def compile_plant(scene: Scene) -> CompiledScene:
         On unknown names, missing files, periods outside the database.
     """
     device = _device(scene)
+    notes: list[str] = []
     try:
-        coupling = device.coupling(scene.device.hydro)
+        database = device.hydro(scene.device.hydro)
     except FileNotFoundError as err:
         raise SceneError(f"device.hydro: {err}") from None
+    if not scene.radiation.body_to_body:
+        database = without_body_interactions(database)
+        notes.append("radiation between bodies left out (radiation.body_to_body = false)")
+    coupling = device.coupling(database)
     hydro = coupling.hydro
     dt = scene.dt
-    notes: list[str] = []
     waves, spectrum = make_waves(scene, hydro)
     excitation = None
     if waves is not None:

@@ -338,6 +338,10 @@ class Radiation:
         Adjust A_inf so that the memory model reproduces the database's A(omega) over the sea state's frequencies
         (BEM's A_inf and the A(omega) implied by the damping through Kramers-Kronig differ by a constant; the
         result's notes give the change).
+    body_to_body : bool
+        Keep the radiation between bodies (added mass and damping between DOFs of different bodies; wecss's
+        default). False drops them, each body radiating onto itself only (WEC-Sim's default, its ``body2body``
+        off); the result's notes say so.
     """
 
     method: str = "convolution"
@@ -345,9 +349,16 @@ class Radiation:
     fit: str = "era-mimo"
     band: float = 0.6
     consistent_added_mass: bool = True
+    body_to_body: bool = True
 
     def __post_init__(self) -> None:
-        _types("radiation", {"consistent_added_mass": (self.consistent_added_mass, bool)})
+        _types(
+            "radiation",
+            {
+                "consistent_added_mass": (self.consistent_added_mass, bool),
+                "body_to_body": (self.body_to_body, bool),
+            },
+        )
         _choice("radiation.method", self.method, RADIATION_METHODS)
         _choice("radiation.fit", self.fit, ("era-mimo", "prony", "era"))
         if not 0 <= self.coupling_threshold < 1:
