@@ -63,7 +63,7 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
         "units": "m",
     },
     # simulation results
-    "time": {"long_name": "time", "units": "s"},
+    "time": {"long_name": "time", "standard_name": "time", "units": "s"},
     "dof_linear": {"long_name": "translational generalised coordinate (joint__label)"},
     "dof_angular": {"long_name": "rotational generalised coordinate (joint__label)"},
     "pto": {"long_name": "power take-off"},

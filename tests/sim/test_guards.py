@@ -153,6 +153,9 @@ def test_wave_elevation_is_recorded_as_applied_with_the_ramp():
     ramp = np.where(t >= 2.0, 1.0, 0.5 * (1 - np.cos(np.pi * t / 2.0)))
     np.testing.assert_allclose(ds.wave_elevation.values, undisturbed * ramp, rtol=0, atol=1e-12)
     assert ds.wave_elevation.values[0] == 0.0 and "with the start ramp" in ds.wave_elevation.attrs["long_name"]
+    # CF attributes (issue 18)
+    assert ds.attrs["Conventions"] == "CF-1.10" and "wecss" in ds.attrs["history"]
+    assert ds.time.attrs["standard_name"] == "time"
 
 
 def test_body_to_body_radiation_switch():

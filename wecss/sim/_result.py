@@ -8,6 +8,7 @@ Only the groups the scene's outputs ask for are present; statistics over the fin
 
 from __future__ import annotations
 
+import datetime as _dt
 import json
 from dataclasses import dataclass, field
 from typing import Any
@@ -259,6 +260,9 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     report = compiled.controller.report() if compiled.device.ptos else {}
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {compiled.device.name}",
+        "Conventions": "CF-1.10",
+        "history": f"{_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} wecss {__version__}: simulate "
+        f"({scene.solver.method})",
         "wecss_version": __version__,
         "scene": scene.to_json(),
         "device": compiled.device.name,
