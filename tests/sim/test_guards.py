@@ -180,3 +180,16 @@ def test_body_to_body_radiation_switch():
     assert not np.allclose(run_off.pto_angle.values, simulate(on).pto_angle.values, rtol=1e-6, atol=0)
     with pytest.raises(SceneError, match=r"radiation\.body_to_body must be bool"):
         scene(radiation={"body_to_body": "no"})
+
+
+def test_a_state_space_run_reports_its_fits_passivity():
+    """The result of a run with the scene's state-space fit carries the fit's passivity margin (min eigenvalue of
+    Re K_hat over the check grid, >= 0 for a passive fit), stability and repair, as the fit report has them."""
+    compiled = compile_scene(scene(sea={"duration": 6.0, "ramp": 2.0}, radiation={"method": "state_space"}))
+    ds = simulate(compiled)
+    report = compiled.radiation_fit.report.attrs
+    assert ds.attrs["radiation_fit_passivity_margin"] == float(report["passivity_margin"])
+    assert ds.attrs["radiation_fit_stable"] == int(report["stable"])
+    assert ds.attrs["radiation_fit_repair"] == str(report["repair"])
+    if report["passivity_margin"] < 0 or not report["stable"]:  # the M4 111 default fit is (margin -3.9e-3)
+        assert "radiation state-space fit: passivity margin" in ds.attrs["notes"]

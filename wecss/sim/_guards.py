@@ -216,3 +216,17 @@ def farthest_body(compiled: CompiledScene, q: np.ndarray) -> tuple[str, float]:
     shift = np.linalg.norm(position[1] - position[0], axis=-1)
     i = int(np.argmax(shift))
     return str(compiled.device.model.body_names[i]), float(shift[i])
+
+
+def fit_notes(compiled: CompiledScene) -> list[str]:
+    """A note when the scene's state-space radiation fit is not passive or not stable (its report says so)."""
+    if compiled.radiation_fit is None:
+        return []
+    report = compiled.radiation_fit.report.attrs
+    margin, stable = float(report["passivity_margin"]), int(report["stable"])
+    if margin >= 0 and stable:
+        return []
+    return [
+        f"radiation state-space fit: passivity margin {margin:.3g} (negative: not passive; it can add energy), "
+        f"{'stable' if stable else 'not stable to the required damping'}; repair: {report['repair']}"
+    ]

@@ -23,7 +23,7 @@ from ..control import PowerBound, power_bound
 from ..hydro import split_dof
 from ..multibody import difference
 from ..waves import Ramp, energy_flux, energy_period, group_velocity, mean_period
-from ._guards import motion_notes, step_notes, wave_notes
+from ._guards import fit_notes, motion_notes, step_notes, wave_notes
 
 
 @dataclass
@@ -151,7 +151,13 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
 
 
 def _notes(compiled: CompiledScene, report: dict[str, Any], q: np.ndarray) -> list[str]:
-    notes = [*compiled.notes, *step_notes(compiled), *wave_notes(compiled), *motion_notes(compiled, q)]
+    notes = [
+        *compiled.notes,
+        *fit_notes(compiled),
+        *step_notes(compiled),
+        *wave_notes(compiled),
+        *motion_notes(compiled, q),
+    ]
     if compiled.device.ptos and not compiled.linear_controller:
         steps = compiled.scene.control_steps
         notes.append(
@@ -287,6 +293,11 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     attrs.update({f"controller_{k}": v for k, v in report.items()})
     attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)
     attrs.update(sea_state_attrs(compiled))
+    if compiled.radiation_fit is not None:  # the state-space fit's passivity and stability, where a user chose it
+        report = compiled.radiation_fit.report.attrs
+        attrs["radiation_fit_passivity_margin"] = float(report["passivity_margin"])
+        attrs["radiation_fit_stable"] = int(report["stable"])
+        attrs["radiation_fit_repair"] = str(report["repair"])
     if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:
         bound = power_bound_of(compiled)
         data["power_bound"] = (("pto",), bound.per_pto)
