@@ -61,3 +61,22 @@ def test_run_reports_bad_scenes_without_a_traceback(tmp_path, capsys: pytest.Cap
     assert main(["run", str(path), "-q"]) == 2
     assert "accepted: regular, jonswap" in capsys.readouterr().err
     assert main(["run", str(tmp_path / "missing.toml"), "-q"]) == 2
+
+
+def test_info_into_a_closed_pipe_ends_quietly():
+    """``wecss info | head -1``: the reader stops early; no error and no traceback on standard error (issue 18)."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "wecss.cli", "info"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, cwd=root
+    )
+    assert proc.stdout is not None and proc.stderr is not None
+    proc.stdout.close()  # as head does after its first line; here before the command writes (no race)
+    err = proc.stderr.read()
+    proc.wait(timeout=60)
+    assert err == b""

@@ -63,7 +63,7 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
         "units": "m",
     },
     # simulation results
-    "time": {"long_name": "time", "units": "s"},
+    "time": {"long_name": "time", "standard_name": "time", "units": "s"},
     "dof_linear": {"long_name": "translational generalised coordinate (joint__label)"},
     "dof_angular": {"long_name": "rotational generalised coordinate (joint__label)"},
     "pto": {"long_name": "power take-off"},
@@ -107,7 +107,10 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "radiation_moment": {"long_name": "radiation memory moment (without the A_inf part), world axes", "units": "N m"},
     "hydro_velocity": {"long_name": "velocity of the centre of mass, world axes", "units": "m/s"},
     "hydro_angular_velocity": {"long_name": "angular velocity, world axes", "units": "rad/s"},
-    "wave_elevation": {"long_name": "undisturbed wave elevation at the origin", "units": "m"},
+    "wave_elevation": {
+        "long_name": "undisturbed wave elevation at the origin, as applied (with the start ramp)",
+        "units": "m",
+    },
     "body_position": {"long_name": "position of the body's centre of mass, world frame", "units": "m"},
     "body_rotation": {"long_name": "rotation vector of the body from its reference orientation", "units": "rad"},
     "joint_reaction_force": {

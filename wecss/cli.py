@@ -15,6 +15,7 @@ paths, validated by the scene). ``wecss plot RESULT.nc`` plots a result.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import tempfile
 import time
@@ -259,6 +260,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _silence_stdout() -> None:
+    """Point standard output at the null device, so that the interpreter's final flush into a closed pipe does not
+    print a second error."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # no file descriptor behind sys.stdout (captured in tests)
+        pass
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``wecss`` command; returns the exit status."""
     args = build_parser().parse_args(argv)
@@ -274,6 +285,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ValueError, FileNotFoundError, ImportError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader stopped early (wecss info | head): end quietly
+        _silence_stdout()
+        return 141
     except OSError as err:  # a file or folder the system refused: no traceback for a user of the command
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -157,3 +158,47 @@ def test_a_coarse_step_is_noted_in_the_result():
     sc = scene(sea={"kind": "regular", "height": 0.01, "period": 1.2, "duration": "5 T", "ramp": 0.0},
                solver={"dt": "T/10"})  # fmt: skip
     assert "with 10 steps per period; 20 or more are recommended" in simulate(sc).attrs["notes"]
+
+
+# issue 18: wrong types and values name the field, the value and what is accepted, before any work
+@pytest.mark.parametrize(
+    ("section", "values", "message"),
+    [
+        ("sea", {"height": "big"}, r"sea\.height must be a number; got 'big' \(str\)"),
+        ("sea", {"gamma": "x"}, r"sea\.gamma must be a number; got 'x'"),
+        ("sea", {"direction": "north"}, r"sea\.direction must be a number; got 'north'"),
+        ("sea", {"seed": -1}, r"sea\.seed must be a non-negative integer; got -1"),
+        ("sea", {"seed": True}, r"sea\.seed must be int; got True"),
+        ("sea", {"d_omega": math.inf}, r"sea\.d_omega must be positive and finite \[rad/s\] \(or absent\); got inf"),
+        ("sea", {"period": math.inf}, r"sea\.period must be positive and finite \[s\] for jonswap waves; got inf"),
+        ("sea", {"height": math.inf}, r"sea\.height must be positive and finite \[m\]; got inf"),
+        ("outputs", {"every": "2"}, r"outputs\.every must be int; got '2' \(str\)"),
+        ("solver", {"angle_bound": "1"}, r"solver\.angle_bound must be a number; got '1'"),
+    ],
+)
+def test_wrong_types_and_values_name_the_field(section, values, message):
+    with pytest.raises(SceneError, match=message):
+        Scene.from_dict({"device": {"name": "m4-111"}, section: values})
+
+
+def test_a_binary_scene_file_and_bad_json_are_named(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_bytes(b"\x00\x01binary\xff\xfe")
+    with pytest.raises(SceneError, match=r"scene\.toml: not a text file"):
+        Scene.from_toml(path)
+    with pytest.raises(SceneError, match=r"a scene's JSON could not be read .*got '\{bad'"):
+        Scene.from_json("{bad")
+    with pytest.raises(SceneError, match="JSON could not be read"):
+        Scene.from_json(None)  # type: ignore[arg-type]
+
+
+def test_wrong_objects_passed_to_the_entry_points_name_what_is_accepted():
+    from wecss.sim import compile_scene, linearize, simulate
+
+    for bad in (3, {"device": {"name": "m4-111"}}):
+        with pytest.raises(TypeError, match=r"simulate takes a Scene, a CompiledScene or a scene file; got"):
+            simulate(bad)  # type: ignore[arg-type]
+        with pytest.raises(TypeError, match=r"compile_scene takes a wecss\.scene\.Scene; got"):
+            compile_scene(bad)  # type: ignore[arg-type]
+        with pytest.raises(TypeError, match=r"linearize takes a CompiledScene .*; got"):
+            linearize(bad)  # type: ignore[arg-type]

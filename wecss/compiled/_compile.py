@@ -22,7 +22,7 @@ from .. import waves as wv
 from ..devices import Device
 from ..devices import available as available_devices
 from ..devices import load as load_device
-from ..hydro import HydroData
+from ..hydro import HydroData, without_body_interactions
 from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
 from ..scene import DeviceChoice, Radiation, Scene, SceneError, SeaState, Solver
@@ -314,15 +314,16 @@ def _file_stamp(value: str | None) -> tuple[str | None, int]:
 
 @functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
 def _device_parts(
-    name: tuple[str, int], hydro: tuple[str | None, int]
+    name: tuple[str, int], hydro: tuple[str | None, int], body_to_body: bool = True
 ) -> tuple[Device, HydroCoupling, StaticModel, np.ndarray, np.ndarray]:
-    """The device, its coupling to the database, its statics, equilibrium and static stiffness (cached; the arrays
-    are read-only)."""
+    """The device, its coupling to the database (without the radiation between bodies unless ``body_to_body``),
+    its statics, equilibrium and static stiffness (cached; the arrays are read-only)."""
     device = _device(Scene(device=DeviceChoice(name=name[0], hydro=hydro[0]), sea=_CALM, solver=_CALM_SOLVER))
     try:
-        coupling = device.coupling(hydro[0])
+        database = device.hydro(hydro[0])
     except FileNotFoundError as err:
         raise SceneError(f"device.hydro: {err}") from None
+    coupling = device.coupling(database if body_to_body else without_body_interactions(database))
     statics = StaticModel(device.model, coupling.hydro.g, coupling, device.ptos)
     q0 = statics.equilibrium()
     stiffness = statics.stiffness(q0)
@@ -340,7 +341,7 @@ def _radiation_parts(
     name: tuple[str, int], hydro: tuple[str | None, int], radiation: Radiation, frequency: bool, dt: float
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
     """The radiation memory of a device for a step (cached)."""
-    coupling = _device_parts(name, hydro)[1]
+    coupling = _device_parts(name, hydro, radiation.body_to_body)[1]
     solver = Solver(method="frequency" if frequency else "beeman", dt=dt)
     scene = Scene(device=DeviceChoice(name=name[0], hydro=hydro[0]), sea=_CALM, solver=solver, radiation=radiation)
     return make_radiation(scene, coupling, dt)
@@ -362,10 +363,13 @@ def compile_plant(scene: Scene) -> CompiledScene:
         On unknown names, missing files, periods outside the database.
     """
     name, hydro_name = _file_stamp(scene.device.name), _file_stamp(scene.device.hydro)
-    device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name)
+    body_to_body = scene.radiation.body_to_body
+    device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name, body_to_body)
+    notes: list[str] = []
+    if not body_to_body:
+        notes.append("radiation between bodies left out (radiation.body_to_body = false)")
     hydro = coupling.hydro
     dt = scene.dt
-    notes: list[str] = []
     waves, spectrum = make_waves(scene, hydro)
     excitation = None
     if waves is not None:

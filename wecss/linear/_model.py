@@ -262,8 +262,8 @@ class LinearModel:
     def modal_steps(self, dt: float, hold: str = "foh") -> ModalSteps:
         """The exact step of ``dt`` [s] in modal coordinates for generalised-force inputs (cached per dt and
         hold)."""
-        if not dt > 0:
-            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        if not (np.isfinite(dt) and dt > 0):
+            raise ValueError(f"dt must be a positive finite step [s]; got {dt!r}")
         cache = self.__dict__.setdefault("_modal_steps", {})
         if (float(dt), hold) not in cache:
             cache[float(dt), hold] = self.modal_form.steps(self.force_input, dt, hold)
@@ -359,8 +359,8 @@ class LinearModel:
         """
         if hold not in ("foh", "zoh"):
             raise ValueError(f"hold must be 'foh' or 'zoh'; got {hold!r}")
-        if not dt > 0:
-            raise ValueError(f"dt must be positive [s]; got {dt!r}")
+        if not (np.isfinite(dt) and dt > 0):
+            raise ValueError(f"dt must be a positive finite step [s]; got {dt!r}")
         cache = self.__dict__.setdefault("_discretised", {})
         if (float(dt), hold) not in cache:
             cache[float(dt), hold] = self._discretise(dt, hold)
@@ -376,7 +376,15 @@ class LinearModel:
 def exact_step(a: np.ndarray, b: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Exact step of x' = a x + b u over ``dt`` [s] with u linear in time between its samples (first-order
     hold): x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1}; with u held, the input matrix is G0 + G1. From the matrix
-    exponential of the augmented system."""
+    exponential of the augmented system.
+
+    Raises
+    ------
+    ValueError
+        If ``dt`` is not a positive finite step (an infinite one gives NaN matrices).
+    """
+    if not (np.isfinite(dt) and dt > 0):
+        raise ValueError(f"dt must be a positive finite step [s]; got {dt!r}")
     n, m = b.shape
     block = np.zeros((n + 2 * m, n + 2 * m))
     block[:n, :n] = a * dt
@@ -439,7 +447,13 @@ def linearize(
     ValueError
         If ``radiation`` is given for a scene whose memory is not a state-space model (its A_inf correction
         would not belong to those states), or its DOFs differ from the database's.
+    TypeError
+        If ``compiled`` is not a CompiledScene.
     """
+    if not isinstance(compiled, CompiledScene):
+        raise TypeError(
+            f"linearize takes a CompiledScene (wecss.sim.compile_scene(scene)); got {type(compiled).__name__}"
+        )
     if radiation is not None and compiled.radiation_summary.method not in ("state_space", "none"):
         raise ValueError(
             "compile the scene with radiation.method = 'state_space' to linearise it with radiation states (its "

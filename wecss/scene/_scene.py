@@ -185,10 +185,12 @@ class SeaState:
     def __post_init__(self) -> None:
         _choice("sea.kind", self.kind, SEA_KINDS)
         if self.kind in ("regular", "jonswap", "pierson-moskowitz"):
-            if self.period is None or not self.period > 0:
-                raise SceneError(f"sea.period must be positive [s] for {self.kind} waves; got {self.period!r}")
-            if not self.height > 0:
-                raise SceneError(f"sea.height must be positive [m]; got {self.height!r}")
+            if self.period is None or not 0 < self.period < math.inf:
+                raise SceneError(
+                    f"sea.period must be positive and finite [s] for {self.kind} waves; got {self.period!r}"
+                )
+            if not 0 < self.height < math.inf:
+                raise SceneError(f"sea.height must be positive and finite [m]; got {self.height!r}")
         if self.kind in ("tabulated", "elevation") and not self.file:
             raise SceneError(f"sea.file is required for {self.kind!r} seas (two columns of numbers)")
         if self.file and not Path(self.file).is_file():
@@ -197,14 +199,18 @@ class SeaState:
             raise SceneError(f"sea.gamma must be >= 1; got {self.gamma!r}")
         if abs(self.direction) > 2 * math.pi:
             raise SceneError(f"sea.direction is in radians; got {self.direction!r}, which looks like degrees")
-        if self.d_omega is not None and not self.d_omega > 0:
-            raise SceneError(f"sea.d_omega must be positive [rad/s]; got {self.d_omega!r}")
+        if self.d_omega is not None and not 0 < self.d_omega < math.inf:
+            raise SceneError(f"sea.d_omega must be positive and finite [rad/s] (or absent); got {self.d_omega!r}")
+        if self.period is not None and not 0 < self.period < math.inf:
+            raise SceneError(f"sea.period must be positive and finite [s] (or absent); got {self.period!r}")
         if not 0 <= self.energy_threshold < 1:
             raise SceneError(f"sea.energy_threshold is a share in [0, 1); got {self.energy_threshold!r}")
         _types(
             "sea",
             {"kind": (self.kind, str), "seed": (self.seed, int), "periodic": (self.periodic, bool)},
         )
+        if self.seed < 0:
+            raise SceneError(f"sea.seed must be a non-negative integer; got {self.seed!r}")
         duration = self.duration_s
         if self.ramp_s >= duration:
             raise SceneError(f"sea.ramp ({self.ramp!r}) must be shorter than sea.duration ({self.duration!r})")
@@ -267,6 +273,10 @@ class Solver:
     max_corrector_iterations : int
     angle_bound : float
         A revolute joint angle beyond this [rad] stops the run (SimulationDiverged).
+    translation_bound : float or None
+        A body's centre of mass further than this [m] from its equilibrium position stops a nonlinear run
+        (SimulationDiverged), checked after each chunk of steps; default (None): 100 times the largest body size
+        V^(1/3) of the database (no bound when it has no displaced volumes).
     reference_rtol : float
         Relative tolerance of the reference solver.
     hold : {"foh", "zoh"} or None
@@ -279,6 +289,7 @@ class Solver:
     corrector_tol: float = 1e-6
     max_corrector_iterations: int = 30
     angle_bound: float = 1.5
+    translation_bound: float | None = None
     reference_rtol: float = 1e-10
     hold: str | None = None
 
@@ -288,11 +299,6 @@ class Solver:
             _choice("solver.hold", self.hold, LINEAR_HOLDS)
             if self.method != "linear":
                 raise SceneError(f"solver.hold applies to solver.method 'linear' only; got method {self.method!r}")
-
-    @property
-    def linear_hold(self) -> str:
-        """The hold of linear runs ("foh" unless ``hold`` says otherwise)."""
-        return self.hold or "foh"
         if not 0 < self.corrector_tol < 1:
             raise SceneError(f"solver.corrector_tol must lie in (0, 1); got {self.corrector_tol!r}")
         if not (isinstance(self.max_corrector_iterations, int) and self.max_corrector_iterations >= 1):
@@ -301,6 +307,14 @@ class Solver:
             )
         if not 0 < self.angle_bound <= 2 * math.pi:
             raise SceneError(f"solver.angle_bound must lie in (0, 2 pi] rad; got {self.angle_bound!r}")
+        bound = self.translation_bound
+        if bound is not None and not (isinstance(bound, int | float) and not isinstance(bound, bool) and bound > 0):
+            raise SceneError(f"solver.translation_bound must be a positive length [m] or absent; got {bound!r}")
+
+    @property
+    def linear_hold(self) -> str:
+        """The hold of linear runs ("foh" unless ``hold`` says otherwise)."""
+        return self.hold or "foh"
 
 
 @dataclass(frozen=True)
@@ -324,6 +338,10 @@ class Radiation:
         Adjust A_inf so that the memory model reproduces the database's A(omega) over the sea state's frequencies
         (BEM's A_inf and the A(omega) implied by the damping through Kramers-Kronig differ by a constant; the
         result's notes give the change).
+    body_to_body : bool
+        Keep the radiation between bodies (added mass and damping between DOFs of different bodies; wecss's
+        default). False drops them, each body radiating onto itself only (WEC-Sim's default, its ``body2body``
+        off); the result's notes say so.
     """
 
     method: str = "convolution"
@@ -331,9 +349,16 @@ class Radiation:
     fit: str = "era-mimo"
     band: float = 0.6
     consistent_added_mass: bool = True
+    body_to_body: bool = True
 
     def __post_init__(self) -> None:
-        _types("radiation", {"consistent_added_mass": (self.consistent_added_mass, bool)})
+        _types(
+            "radiation",
+            {
+                "consistent_added_mass": (self.consistent_added_mass, bool),
+                "body_to_body": (self.body_to_body, bool),
+            },
+        )
         _choice("radiation.method", self.method, RADIATION_METHODS)
         _choice("radiation.fit", self.fit, ("era-mimo", "prony", "era"))
         if not 0 <= self.coupling_threshold < 1:
@@ -505,6 +530,7 @@ class Scene:
                     )
                     if isinstance(value, str) and looks_like_path and not Path(value).is_absolute():
                         values[key] = str((base / value).resolve())
+            _check_numbers(section, values, kind)
             try:
                 parts[section] = kind(**values)
             except TypeError as err:  # wrong types reaching comparisons
@@ -529,6 +555,8 @@ class Scene:
             data = tomllib.loads(path.read_text())
         except tomllib.TOMLDecodeError as err:
             raise SceneError(f"{path}: not valid TOML: {err}") from None
+        except UnicodeDecodeError:
+            raise SceneError(f"{path}: not a text file (a scene is a UTF-8 TOML file)") from None
         return cls.from_dict(data, base=path.parent)
 
     def to_dict(self) -> dict[str, Any]:
@@ -543,8 +571,36 @@ class Scene:
 
     @classmethod
     def from_json(cls, text: str) -> Scene:
-        """Inverse of :meth:`to_json`."""
-        return cls.from_dict(json.loads(text))
+        """Inverse of :meth:`to_json`.
+
+        Raises
+        ------
+        SceneError
+            If ``text`` is not JSON (or not text), or on malformed fields.
+        """
+        try:
+            data = json.loads(text)
+        except (json.JSONDecodeError, TypeError) as err:
+            shown = text[:60] if isinstance(text, str) else type(text).__name__
+            raise SceneError(f"a scene's JSON could not be read ({err}); got {shown!r}") from None
+        return cls.from_dict(data)
+
+
+_NUMBER_FIELDS = {"float": False, "float | None": False, "int": True, "int | None": True}
+
+
+def _check_numbers(section: str, values: dict[str, Any], kind: type) -> None:
+    """Refuse a value of the wrong type for a field that takes only a number (a string height, a float seed), naming
+    the field, the value and what is accepted."""
+    for f in fields(kind):
+        integer = _NUMBER_FIELDS.get(str(f.type))
+        if integer is None or f.name not in values or (values[f.name] is None and "None" in str(f.type)):
+            continue
+        value = values[f.name]
+        ok = isinstance(value, int) if integer else isinstance(value, int | float)
+        if isinstance(value, bool) or not ok:
+            accepted = "int" if integer else "a number"
+            raise SceneError(f"{section}.{f.name} must be {accepted}; got {value!r} ({type(value).__name__})")
 
 
 def default_scene_path() -> Path:

@@ -17,7 +17,9 @@ import numpy as np
 from ..compiled import CompiledScene, Plant, RadiationArrays, accelerations
 from ..scene import SceneError
 from ._control import ControlLoop
+from ._guards import check_rk4, farthest_body, stiff_pto_hint, translation_bound
 from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
+from ._progress import Progress
 from ._result import Record, stats_start, window_statistics
 
 CHUNK_STEPS: int = 2000
@@ -77,29 +79,6 @@ class _Excitation:
         return self.compiled.excitation_at((done + np.arange(self.per_step * m + 1) / self.per_step) * self.compiled.dt)
 
 
-class _Progress:
-    def __init__(self, total: int, enabled: bool) -> None:
-        self.total = total
-        self.enabled = enabled
-        self.start = _time.perf_counter()
-
-    def update(self, done: int) -> None:
-        if not self.enabled:
-            return
-        elapsed = _time.perf_counter() - self.start
-        rate = done / elapsed if elapsed > 0 else 0.0
-        width = 30
-        filled = int(width * done / self.total)
-        print(
-            f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} steps  {rate:,.0f} steps/s",
-            end="",
-            file=sys.stderr,
-            flush=True,
-        )
-        if done >= self.total:
-            print(file=sys.stderr)
-
-
 def _shift_history(p: Plant, r: RadiationArrays, state: LoopState, held: np.ndarray, command: np.ndarray) -> None:
     """Beeman's acceleration history across a jump of the held PTO command at the present instant.
 
@@ -139,7 +118,8 @@ def _diverged(
     return SimulationDiverged(
         f"simulation diverged at t = {t:.6g} s (step {step}): {reason}; last good q = "
         + ", ".join(f"{n} {x:.4g}" for n, x in zip(names, q, strict=True))
-        + ". Try a smaller solver.dt or check the device and controller.",
+        + "."
+        + stiff_pto_hint(compiled),
         t,
         step,
         {"q": q.copy(), "v": v.copy()},
@@ -200,6 +180,9 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
             row[0] = value
         out.save_index[0] = 1
     rk4 = scene.solver.method == "rk4"
+    bound, next_check, shift, body = translation_bound(compiled), CHUNK_STEPS, 0.0, ""
+    if rk4:
+        check_rk4(compiled)
     # a controller without linear gains is called once per control period (chunk) and its force held over it
     chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
     loop = None if compiled.linear_controller else ControlLoop.start(compiled)
@@ -207,7 +190,7 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     def full_state() -> np.ndarray:
         return np.concatenate([q, v, z.real, z.imag])
 
-    bar = _Progress(n, progress)
+    bar = Progress(n, progress)
     start = _time.perf_counter()
     excitation = _Excitation(compiled, 2 if rk4 else 1)  # (timed: it is part of the loop's work)
     done = 0
@@ -235,6 +218,18 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
                 {"q": q.copy(), "v": v.copy()},
             )
         done += m
+        if done >= next_check or done == n:  # about every CHUNK_STEPS steps, whatever the chunk, and at the end
+            next_check = done + CHUNK_STEPS
+            body, shift = farthest_body(compiled, q)
+        if shift > bound:
+            raise SimulationDiverged(
+                f"body {body} moved {shift:.4g} m from its equilibrium by t = {done * h:.6g} s, beyond "
+                f"solver.translation_bound ({bound:.4g} m): a drift (nothing restores horizontal motion without a "
+                "mooring) or a divergence; give a larger solver.translation_bound if the motion is meant",
+                done * h,
+                done,
+                {"q": q.copy(), "v": v.copy()},
+            )
         bar.update(done)
     run_time = _time.perf_counter() - start
     saved = np.arange(n_save) * every * h

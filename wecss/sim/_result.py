@@ -8,6 +8,7 @@ Only the groups the scene's outputs ask for are present; statistics over the fin
 
 from __future__ import annotations
 
+import datetime as _dt
 import json
 from dataclasses import dataclass, field
 from typing import Any
@@ -21,7 +22,8 @@ from ..compiled import JIT, CompiledScene, hydro_velocity, poses
 from ..control import PowerBound, power_bound
 from ..hydro import split_dof
 from ..multibody import difference
-from ..waves import energy_flux, energy_period, group_velocity, mean_period
+from ..waves import Ramp, energy_flux, energy_period, group_velocity, mean_period
+from ._guards import fit_notes, motion_notes, step_notes, wave_notes
 from ._loads import recover_loads
 
 
@@ -149,8 +151,14 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
     return out
 
 
-def _notes(compiled: CompiledScene, report: dict[str, Any]) -> list[str]:
-    notes = list(compiled.notes)
+def _notes(compiled: CompiledScene, report: dict[str, Any], q: np.ndarray) -> list[str]:
+    notes = [
+        *compiled.notes,
+        *fit_notes(compiled),
+        *step_notes(compiled),
+        *wave_notes(compiled),
+        *motion_notes(compiled, q),
+    ]
     if compiled.device.ptos and not compiled.linear_controller:
         steps = compiled.scene.control_steps
         notes.append(
@@ -221,6 +229,8 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         )
     if "elevation" in groups and n_t:
         eta = compiled.waves.elevation(record.time) if compiled.waves is not None else np.zeros(n_t)
+        if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
+            eta = eta * Ramp(scene.sea.ramp_s)(record.time)
         data["wave_elevation"] = (("time",), eta)
     if "poses" in groups and n_t:
         position, rotation = poses(compiled.plant, np.ascontiguousarray(record.q))
@@ -258,6 +268,9 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     report = compiled.controller.report() if compiled.device.ptos else {}
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {compiled.device.name}",
+        "Conventions": "CF-1.10",
+        "history": f"{_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} wecss {__version__}: simulate "
+        f"({scene.solver.method})",
         "wecss_version": __version__,
         "scene": scene.to_json(),
         "device": compiled.device.name,
@@ -275,7 +288,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "run_time_s": record.run_time,
         "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
         "seed": scene.sea.seed,
-        "notes": "; ".join(_notes(compiled, report)) or "none",
+        "notes": "; ".join(_notes(compiled, report, record.q)) or "none",
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
     }
@@ -284,6 +297,11 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     attrs.update(sea_state_attrs(compiled))
     if closure is not None:
         attrs["loads_closure_residual"] = closure
+    if compiled.radiation_fit is not None:  # the state-space fit's passivity and stability, where a user chose it
+        report = compiled.radiation_fit.report.attrs
+        attrs["radiation_fit_passivity_margin"] = float(report["passivity_margin"])
+        attrs["radiation_fit_stable"] = int(report["stable"])
+        attrs["radiation_fit_repair"] = str(report["repair"])
     if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:
         bound = power_bound_of(compiled)
         data["power_bound"] = (("pto",), bound.per_pto)

@@ -1,0 +1,232 @@
+"""Validity guards of a run, with stated thresholds: the step against the fastest mode of the plant with its PTO
+gains (RK4 refused past its stability limit, a coarse step noted), the sea's steepness and height against the bodies'
+size, the bodies' motion amplitudes against their size and a drift of unrestrained bodies (notes in the result).
+
+The body size is the cube root of its displaced volume V^(1/3) [m] (from the hydrodynamic database). Linear
+hydrodynamics (the database's coefficients, computed for small motions about the equilibrium) lose accuracy for
+steep waves and motions comparable to the bodies' size; the guards say so in the result's notes but do not stop a
+run, which stays a valid solution of the equations it integrates.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..compiled import CompiledScene, poses
+from ..linear import equilibrium_maps
+from ..scene import SceneError
+from ..waves import wavenumber
+
+#: RK4's stability limit used on |s| dt of the fastest mode (the method's region reaches 2.78 on the negative real
+#: axis and 2.83 on the imaginary axis; 2.5 keeps a margin, as for the radiation states).
+RK4_LIMIT = 2.5
+#: Fewer steps than this per period 2 pi / |s| of the fastest mode are noted (an accurate step resolves it).
+GOOD_STEPS_PER_MODE = 20
+#: Significant wave height over the deep-water wavelength at the peak period above which a note is written
+#: (linear wave theory is a good model for Hs / lambda_p below about 1/25; waves break near 1/7).
+STEEPNESS_LIMIT = 1 / 25
+#: Wave height Hs above this multiple of the smallest body's size V^(1/3) is noted.
+HEIGHT_LIMIT = 1.0
+#: A body's largest vertical displacement from its equilibrium above this multiple of its size V^(1/3) is noted.
+TRANSLATION_LIMIT = 0.5
+#: A body's largest rotation from its equilibrium above this angle [rad] (20 degrees) is noted.
+ROTATION_LIMIT = float(np.deg2rad(20.0))
+#: A body whose horizontal mean position moves by more than this multiple of its size V^(1/3) between the first and
+#: the last tenth of the saved record is noted as drifting.
+DRIFT_LIMIT = 1.0
+
+
+def fastest_mode(compiled: CompiledScene) -> float:
+    """|s| [rad/s] of the fastest mode of the plant linearised about its equilibrium with the PTO gains in its
+    equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out)."""
+    p = compiled.plant
+    b, _, g, _ = equilibrium_maps(compiled)
+    mass = b.T @ p.total_mass @ b
+    damping = g.T @ np.diag(p.pto_damping) @ g
+    nv = mass.shape[0]
+    a = np.zeros((2 * nv, 2 * nv))
+    a[:nv, nv:] = np.eye(nv)
+    a[nv:, :nv] = -np.linalg.solve(mass, compiled.stiffness)
+    a[nv:, nv:] = -np.linalg.solve(mass, damping)
+    eig = np.linalg.eigvals(a)
+    return float(np.max(np.abs(eig))) if eig.size else 0.0
+
+
+def _gains(compiled: CompiledScene) -> str:
+    p = compiled.plant
+    parts = [
+        f"{pto.name}: damping {c:.4g}, stiffness {k:.4g}"
+        for pto, c, k in zip(compiled.device.ptos, p.pto_damping, p.pto_stiffness, strict=True)
+        if c != 0 or k != 0
+    ]
+    return "; ".join(parts)
+
+
+def check_rk4(compiled: CompiledScene) -> None:
+    """Refuse RK4 when the fastest mode with the PTO gains passes its stability limit.
+
+    Raises
+    ------
+    SceneError
+        If |s| dt > RK4_LIMIT, naming the PTO gains when they set the mode.
+    """
+    rate = fastest_mode(compiled)
+    dt = compiled.dt
+    if rate * dt <= RK4_LIMIT:
+        return
+    gains = _gains(compiled)
+    cause = f"the PTO gains ({gains} [SI]) are the likely cause; " if gains else ""
+    raise SceneError(
+        f"RK4 is unstable for this plant: its fastest mode |s| = {rate:.4g} rad/s needs dt < {RK4_LIMIT / rate:.3g} s "
+        f"(given {dt:.3g} s); {cause}reduce the PTO gain, use 'beeman' or give a smaller solver.dt"
+    )
+
+
+def stiff_pto_hint(compiled: CompiledScene) -> str:
+    """A sentence for a divergence message: the PTO gains when the fastest mode they give is coarsely stepped,
+    else the step and the device."""
+    gains = _gains(compiled)
+    rate = fastest_mode(compiled)
+    steps = 2 * np.pi / (rate * compiled.dt) if rate > 0 else np.inf
+    if gains and steps < GOOD_STEPS_PER_MODE:
+        return (
+            f" A stiff PTO is the likely cause: with the PTO gains ({gains} [SI]) the fastest mode |s| = {rate:.4g} "
+            f"rad/s has {steps:.3g} steps per period; reduce the PTO gain or give solver.dt below "
+            f"{2 * np.pi / (GOOD_STEPS_PER_MODE * rate):.3g} s."
+        )
+    if not compiled.linear_controller and compiled.device.ptos:
+        return (
+            " A stiff controller (large gains on the PTO velocity or stroke) is a likely cause: reduce its gains, "
+            "or try a smaller solver.dt or check the device."
+        )
+    return " Try a smaller solver.dt or check the device and controller."
+
+
+def step_notes(compiled: CompiledScene) -> list[str]:
+    """A note when the step resolves the fastest mode (PTO gains included) with fewer than GOOD_STEPS_PER_MODE
+    steps per period."""
+    rate = fastest_mode(compiled)
+    if rate <= 0:
+        return []
+    steps = 2 * np.pi / (rate * compiled.dt)
+    if steps >= GOOD_STEPS_PER_MODE:
+        return []
+    return [
+        f"solver.dt ({compiled.dt:.4g} s) resolves the fastest mode of the plant with its PTO gains (|s| = "
+        f"{rate:.4g} rad/s) with {steps:.3g} steps per period; {GOOD_STEPS_PER_MODE} or more are recommended"
+    ]
+
+
+def _sizes(compiled: CompiledScene) -> dict[str, float]:
+    """Body name -> V^(1/3) [m] for the bodies the database has a positive displaced volume for."""
+    ds = compiled.hydro.dataset
+    if "displaced_volume" not in ds or "body" not in ds.displaced_volume.dims:
+        return {}
+    names = [str(b) for b in ds.displaced_volume["body"].values]
+    return {n: float(v) ** (1 / 3) for n, v in zip(names, ds.displaced_volume.values, strict=True) if v > 0}
+
+
+def wave_notes(compiled: CompiledScene) -> list[str]:
+    """Notes on the sea's steepness H / lambda (H or Hs [m] and the wavelength at the period or peak period, at
+    the database's depth) and its height against the smallest body."""
+    waves, sea = compiled.waves, compiled.scene.sea
+    if waves is None or not waves.omega.size:
+        return []
+    # the height the user gave (H of a regular wave, Hs of a spectrum), else that of the simulated components
+    given = sea.kind in ("regular", "jonswap", "pierson-moskowitz")
+    hs = float(sea.height) if given else 4 * float(np.sqrt(np.sum(np.abs(waves.amplitude) ** 2) / 2))
+    notes = []
+    if sea.period is not None and sea.period > 0:
+        k = float(wavenumber(np.array([2 * np.pi / sea.period]), compiled.hydro.water_depth, compiled.hydro.g)[0])
+        steepness = hs * k / (2 * np.pi)
+        if steepness > STEEPNESS_LIMIT:
+            notes.append(
+                f"steep sea: height / wavelength at the (peak) period = {steepness:.3g} (above "
+                f"{STEEPNESS_LIMIT:.3g}); linear wave theory and linear hydrodynamics lose accuracy"
+            )
+    sizes = _sizes(compiled)
+    if sizes:
+        name, size = min(sizes.items(), key=lambda item: item[1])
+        if hs > HEIGHT_LIMIT * size:
+            notes.append(
+                f"wave height {hs:.3g} m exceeds {HEIGHT_LIMIT:g} x the size V^(1/3) = {size:.3g} m of body "
+                f"{name}; linear hydrodynamics lose accuracy"
+            )
+    return notes
+
+
+def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
+    """Notes on the saved configurations ``q`` (n_t, nq): motion amplitudes against the bodies' size and a drift
+    of the horizontal mean position."""
+    if q.shape[0] < 2:
+        return []
+    names = list(compiled.device.model.body_names)
+    sizes = _sizes(compiled)
+    position, rotation = poses(compiled.plant, np.ascontiguousarray(q))
+    rest_pos, rest_rot = poses(compiled.plant, np.ascontiguousarray(compiled.q0[None]))
+    notes = []
+    angle = np.linalg.norm(rotation - rest_rot, axis=-1).max(axis=0)
+    big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
+    if big:
+        notes.append(
+            f"large rotations from the equilibrium (above {np.rad2deg(ROTATION_LIMIT):.3g} deg): {', '.join(big)}; "
+            "linear hydrodynamics lose accuracy"
+        )
+    # vertical only: horizontal motion of an unmoored body is mostly drift, noted below
+    shift = np.abs(position[..., 2] - rest_pos[..., 2]).max(axis=0)
+    big = [
+        f"{n} {s:.3g} m (size {sizes[n]:.3g} m)"
+        for n, s in zip(names, shift, strict=True)
+        if n in sizes and s > TRANSLATION_LIMIT * sizes[n]
+    ]
+    if big:
+        notes.append(
+            f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
+            f"{', '.join(big)}; linear hydrodynamics lose accuracy"
+        )
+    tenth = max(1, q.shape[0] // 10)
+    drift = np.linalg.norm(position[-tenth:, :, :2].mean(axis=0) - position[:tenth, :, :2].mean(axis=0), axis=-1)
+    far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
+    if far:
+        notes.append(
+            f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run "
+            f"({', '.join(far)}); nothing restores it (the device has no mooring)"
+        )
+    return notes
+
+
+#: The default translation bound: this multiple of the largest body size V^(1/3).
+TRANSLATION_BOUND_SIZES = 100.0
+
+
+def translation_bound(compiled: CompiledScene) -> float:
+    """The scene's ``solver.translation_bound`` [m], or by default TRANSLATION_BOUND_SIZES times the largest body
+    size V^(1/3) (inf when the database has no displaced volumes)."""
+    given = compiled.scene.solver.translation_bound
+    if given is not None:
+        return float(given)
+    sizes = _sizes(compiled)
+    return TRANSLATION_BOUND_SIZES * max(sizes.values()) if sizes else float("inf")
+
+
+def farthest_body(compiled: CompiledScene, q: np.ndarray) -> tuple[str, float]:
+    """The body whose centre of mass is farthest from its equilibrium position in configuration ``q``, and that
+    distance [m]."""
+    position, _ = poses(compiled.plant, np.ascontiguousarray(np.stack([compiled.q0, q])))
+    shift = np.linalg.norm(position[1] - position[0], axis=-1)
+    i = int(np.argmax(shift))
+    return str(compiled.device.model.body_names[i]), float(shift[i])
+
+
+def fit_notes(compiled: CompiledScene) -> list[str]:
+    """A note when the scene's state-space radiation fit is not passive or not stable (its report says so)."""
+    if compiled.radiation_fit is None:
+        return []
+    report = compiled.radiation_fit.report.attrs
+    margin, stable = float(report["passivity_margin"]), int(report["stable"])
+    if margin >= 0 and stable:
+        return []
+    return [
+        f"radiation state-space fit: passivity margin {margin:.3g} (negative: not passive; it can add energy), "
+        f"{'stable' if stable else 'not stable to the required damping'}; repair: {report['repair']}"
+    ]
