@@ -108,7 +108,7 @@ def table(rows: list[dict], pto_names: list[str]) -> str:
     head = (
         "| Tp [s] | controller | model | "
         + " | ".join(f"{n} [mW]" for n in pto_names)
-        + " | total [mW] | CWR | RMS angle [deg] | share of bound | past stroke limit [s] | run [s] |"
+        + " | total [mW] | CWR | RMS angle [deg] | share of bound | past stroke limit, sum of PTOs [s] | run [s] |"
     )
     lines = [head, "|" + "---|" * (9 + len(pto_names))]
     for r in rows:
