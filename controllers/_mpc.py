@@ -160,9 +160,9 @@ class MPC(Controller):
             raise ValueError("mpc plans with the sea state's excitation; the scene's sea is calm")
         period, steps = context.control_period, self.horizon
         plant = context.linear_model()
-        built_for = (plant, exc, period, tuple(context.force_limit), tuple(context.stroke_limit))
+        built_for = (plant, exc, (period, tuple(context.force_limit), tuple(context.stroke_limit)))
         last = getattr(self, "_built_for", None)
-        if last is not None and all(a is b or a == b for a, b in zip(last, built_for, strict=True)):
+        if last is not None and last[0] is plant and last[1] is exc and last[2] == built_for[2]:
             # set up again for the same plant and sea (the simulators do so per run): keep the build, but a fresh
             # solver (no warm start carried from an earlier run, so that every run is the same)
             self.path = self._solver_path()

@@ -199,3 +199,16 @@ def test_the_reduced_plan_converges_to_the_full_one():
     gaps = {e: abs(power[e] / power[0.0] - 1) for e in (0.01, 0.001)}
     assert gaps[0.001] < 0.002
     assert gaps[0.01] < 0.02
+
+
+def test_a_reused_controller_plans_as_a_fresh_one():
+    """One MPC object run on two sea states in turn (its build kept only for the same plant and sea) absorbs
+    exactly what a new object does in each."""
+    reused = MPC(preview="perfect", horizon=10)
+    for height in (0.02, 0.03, 0.02):
+        sc = scene("m4-111", sea={"height": height, "duration": 6.0, "ramp": 1.2},
+                   controller={"name": "mpc", "dt": 0.06}, solver={"method": "linear"},
+                   radiation={"method": "state_space"}, outputs={"variables": ["pto"]})  # fmt: skip
+        again = simulate(sc, controller=reused).pto_torque.values
+        fresh = simulate(sc, controller=MPC(preview="perfect", horizon=10)).pto_torque.values
+        np.testing.assert_array_equal(again, fresh)
