@@ -22,6 +22,7 @@ from ..scene import default_scene_path as default_scene_path
 from ._linear import simulate_linear as simulate_linear
 from ._nonlinear import PtoLimitExceeded as PtoLimitExceeded
 from ._nonlinear import SimulationDiverged as SimulationDiverged
+from ._progress import format_seconds as format_seconds
 from ._result import Record as Record
 from ._result import build_result as build_result
 from ._result import window_statistics as window_statistics

@@ -50,8 +50,10 @@ class Progress:
         """The progress text."""
         finished = self.done + self.failed
         filled = int(self.width * finished / self.total) if self.total else self.width
+        from ..sim import format_seconds  # the runs' own; lazy: the simulator need not load to count cases
+
         eta = self.eta_s
-        eta_text = "--" if eta is None else _duration(eta)
+        eta_text = "--" if eta is None else format_seconds(eta)
         return (
             f"[{'#' * filled}{'.' * (self.width - filled)}] {finished}/{self.total} cases: {self.done} done, "
             f"{self.failed} failed, ETA {eta_text}"
@@ -68,14 +70,3 @@ class Progress:
             self.stream.write(self.line() + "\n")
             self._last = now
         self.stream.flush()
-
-
-def _duration(seconds: float) -> str:
-    seconds = round(seconds)
-    if seconds < 60:
-        return f"{seconds}s"
-    minutes, s = divmod(seconds, 60)
-    if minutes < 60:
-        return f"{minutes}m{s:02d}s"
-    hours, m = divmod(minutes, 60)
-    return f"{hours}h{m:02d}m"
