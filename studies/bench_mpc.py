@@ -19,46 +19,18 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
-import csv
 import platform
 import time
 
 import numpy as np
 from _common import ROOT, write_section
+from m4_control import m4_scene
+from wecccomp import WAVESTAR, wecccomp_scene
 
-from wecss.sim import Scene, default_scene_path, simulate
+from wecss.sim import simulate
 
 SECTION = "## MPC"
-DATA = ROOT.parent / "shared" / "data"
-WAVESTAR = DATA / "wamit" / "wavestar" / "wavestar.out"
-SEA_STATES = DATA / "wecccomp" / "sea_states.csv"
 MPC = {"name": "mpc", "dt": "Tp/20", "parameters": {"preview": "perfect", "horizon": 30}}
-
-
-def wavestar_scene(controller: dict) -> Scene:
-    with SEA_STATES.open() as f:
-        row = {int(r["id"]): r for r in csv.DictReader(line for line in f if not line.startswith("#"))}[5]
-    tp = float(row["tp_s"])
-    return Scene.from_dict(
-        {
-            "device": {"name": "wavestar", "hydro": str(WAVESTAR)},
-            "sea": {"kind": "jonswap", "height": float(row["hm0_m"]), "period": tp, "gamma": float(row["gamma"]),
-                    "duration": "100 Tp", "ramp": float(row["ramp_s"])},
-            "solver": {"dt": "Tp/200"},
-            "radiation": {"method": "state_space"},
-            "controller": controller,
-            "outputs": {"variables": ["pto"]},
-        }
-    )  # fmt: skip
-
-
-def m4_scene(controller: dict, duration: str) -> Scene:
-    data = Scene.from_toml(default_scene_path()).to_dict()
-    data["sea"] = {**data["sea"], "duration": duration}
-    data["radiation"] = {**data.get("radiation", {}), "method": "state_space"}
-    data["controller"] = controller
-    data["outputs"] = {"variables": ["pto"]}
-    return Scene.from_dict(data)
 
 
 def measure(make, damping: dict, repeats: int) -> dict[str, float]:
@@ -92,14 +64,14 @@ def main() -> None:
     args = parser.parse_args()
     damping = {"name": "damping", "parameters": {"damping": 6.0}}
     if args.quick:
-        print(measure(lambda c: m4_scene(c, "10 Tp"), damping, 1))
+        print(measure(lambda c: m4_scene("m4-134", 1.2, "10 Tp", c, "beeman"), damping, 1))
         return
     rows = []
     if WAVESTAR.is_file():
-        r = measure(wavestar_scene, {"name": "optimal-damping"}, args.repeats)
+        r = measure(lambda c: wecccomp_scene(5, c), {"name": "optimal-damping"}, args.repeats)  # 141.2 s: 100 Tp
         rows.append(("wavestar, WECCCOMP SS5, 60 N / 0.08 m limits", r))
         print(rows[-1], flush=True)
-    r = measure(lambda c: m4_scene(c, "100 Tp"), damping, args.repeats)
+    r = measure(lambda c: m4_scene("m4-134", 1.2, "100 Tp", c, "beeman"), damping, args.repeats)
     rows.append(("m4-134, default sea state, 4 PTOs", r))
     print(rows[-1], flush=True)
     lines = [
