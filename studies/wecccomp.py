@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import dataclasses
 import sys
 import time
 from pathlib import Path
@@ -95,19 +96,8 @@ def excitation_check(state: int) -> dict[str, float]:
     stored = loadmat(DATA / "wecccomp" / f"SS{state}_excM_stored.mat")
     time = stored["time_excM_stored"].ravel()
     moment = stored["excM_stored"].ravel()
-    row = sea_states()[state]
-    sc = Scene.from_dict(
-        {
-            "device": {"name": "wavestar", "hydro": str(WAVESTAR)},
-            "sea": {
-                "kind": "jonswap", "height": row["hm0_m"], "period": row["tp_s"], "gamma": row["gamma"],
-                "duration": float(time[-1]), "ramp": row["ramp_s"],
-            },
-            "solver": {"dt": 0.05 / 4},
-            "radiation": {"method": "none"},
-            "controller": {"name": "damping"},
-        }
-    )  # fmt: skip
+    sc = wecccomp_scene(state, {"name": "damping"}, duration=float(time[-1]))
+    sc = dataclasses.replace(sc, radiation=dataclasses.replace(sc.radiation, method="none"))  # excitation only
     compiled = compile_scene(sc)
     jacobian = linearize(compiled).hydro_jacobian  # (n_h, 1): the hinge's generalised force is the moment about it
     keep = time >= 25.0
