@@ -149,7 +149,7 @@ class MPC(Controller):
         self.ar_order = ar_order
         self.radiation_error = float(radiation_error)
         self.radiation_states = (0, 0)
-        self.radiation_bound = 0.0
+        self.radiation_measured_error = 0.0
         self.solve_times: list[float] = []
         self.fallbacks = 0
         self.largest_slack = 0.0
@@ -220,13 +220,13 @@ class MPC(Controller):
         docstring), the error measured on 800 frequencies from 0 to 1.5 times the larger of the database's last
         frequency and the control period's Nyquist frequency; the states kept and the error are reported."""
         full = 0 if model.radiation is None else model.radiation.n_states
-        self.radiation_states, self.radiation_bound = (full, full), 0.0
+        self.radiation_states, self.radiation_measured_error = (full, full), 0.0
         if model.radiation is None or full == 0 or self.radiation_error == 0:
             return model
         top = 1.5 * max(float(np.max(model.hydro.omega)), np.pi / period)
         reduction, error = truncate_to_error(model.radiation, self.radiation_error, np.linspace(0.0, top, 800))
         self.radiation_states = (full, reduction.model.n_states)
-        self.radiation_bound = error
+        self.radiation_measured_error = error
         return model.with_radiation(reduction.model)
 
     def _start(self) -> None:
@@ -298,7 +298,7 @@ class MPC(Controller):
             "largest_stroke_slack": self.largest_slack,
             "convexity_shift": float(self.qp.convexity_shift) if hasattr(self, "qp") else 0.0,
             "radiation_states": f"{self.radiation_states[1]} of {self.radiation_states[0]} (balanced truncation)",
-            "radiation_relative_error": self.radiation_bound,
+            "radiation_relative_error": self.radiation_measured_error,
         }
 
 

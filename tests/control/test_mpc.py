@@ -193,7 +193,7 @@ def test_the_reduced_plan_converges_to_the_full_one():
     assert full[0] == full[1] == runs[0.001][1].radiation_states[0]
     assert runs[0.01][1].radiation_states[1] < runs[0.001][1].radiation_states[1] < 0.3 * full[0]
     for error in (0.01, 0.001):
-        assert runs[error][1].radiation_bound <= error
+        assert runs[error][1].radiation_measured_error <= error
     assert "balanced truncation" in runs[0.001][0].attrs["controller_radiation_states"]
     power = {e: float(ds.mean_pto_power.sum()) for e, (ds, _) in runs.items()}
     gaps = {e: abs(power[e] / power[0.0] - 1) for e in (0.01, 0.001)}
