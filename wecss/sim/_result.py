@@ -25,6 +25,7 @@ from ..multibody import difference
 from ..waves import Ramp, energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, motion_notes, step_notes, wave_notes
 from ._loads import recover_loads
+from ._sections import hot_spot_names, hot_spot_stresses
 
 
 @dataclass
@@ -325,6 +326,14 @@ def _add_loads(data: dict[str, Any], coords: dict[str, Any], compiled: CompiledS
         data["pto_end_force"] = (("time", "pto", "pto_end", "axis"), loads.pto_body_force)
         data["pto_end_moment"] = (("time", "pto", "pto_end", "axis"), loads.pto_body_moment)
         coords["pto_end"] = ["a", "b"]
+    if loads.section.shape[1]:  # the device's members: section loads and stresses at their hot spots
+        members = compiled.device.members
+        coords["hot_spot"] = hot_spot_names(members)
+        coords["section_axis"] = ["x", "y", "z"]
+        data["section_force"] = (("time", "hot_spot", "section_axis"), loads.section[..., :3])
+        data["section_moment"] = (("time", "hot_spot", "section_axis"), loads.section[..., 3:])
+        for key, values in hot_spot_stresses(members, loads.section).items():
+            data[f"{key}_stress"] = (("time", "hot_spot"), values)
     return loads.closure
 
 
