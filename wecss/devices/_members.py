@@ -204,6 +204,21 @@ class Member:
         moment = (np.cross(arm, f) + m).sum(axis=-2)
         return np.concatenate([force @ axes.T, moment @ axes.T], axis=-1)
 
+    def stress_components(self, spot: HotSpot, wrench: np.ndarray) -> dict[str, np.ndarray]:
+        """The stress components at a hot spot, linear in the section load (so complex amplitudes work too).
+
+        Returns
+        -------
+        dict of ndarray
+            ``axial`` N / A, ``bending`` My z / Iy - Mz y / Iz, ``normal`` their sum sigma and ``shear`` T / W_t
+            [Pa], SCF applied.
+        """
+        w = np.asarray(wrench)
+        s = self.section
+        axial = spot.scf * w[..., 0] / s.area
+        bending = spot.scf * (w[..., 4] * spot.z / s.iy - w[..., 5] * spot.y / s.iz)
+        return {"axial": axial, "bending": bending, "normal": axial + bending, "shear": spot.scf * w[..., 3] / s.wt}
+
     def stresses(self, spot: HotSpot, wrench: np.ndarray) -> dict[str, np.ndarray]:
         """Hot-spot stresses from the internal wrench at the spot's station.
 
@@ -212,11 +227,8 @@ class Member:
         dict of ndarray
             ``normal`` sigma, ``shear`` tau, ``von_mises`` and ``signed_von_mises`` [Pa], SCF applied.
         """
-        w = np.asarray(wrench, dtype=float)
-        s = self.section
-        sigma = w[..., 0] / s.area + w[..., 4] * spot.z / s.iy - w[..., 5] * spot.y / s.iz
-        tau = w[..., 3] / s.wt
-        sigma, tau = spot.scf * sigma, spot.scf * tau
+        parts = self.stress_components(spot, np.asarray(wrench, dtype=float))
+        sigma, tau = parts["normal"], parts["shear"]
         vm = np.sqrt(sigma**2 + 3 * tau**2)
         return {"normal": sigma, "shear": tau, "von_mises": vm, "signed_von_mises": np.where(sigma < 0, -vm, vm)}
 

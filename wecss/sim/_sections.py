@@ -109,18 +109,16 @@ def section_loads(members: tuple[Member, ...], body_index: dict[str, int], bodie
 
 
 def hot_spot_stresses(members: tuple[Member, ...], sections: np.ndarray) -> dict[str, np.ndarray]:
-    """Stresses (n_t, n_spot) [Pa] at every hot spot from its section loads (SCF applied, see
-    :meth:`wecss.devices.Member.stresses`): ``axial`` N/A, ``bending`` My z/Iy - Mz y/Iz, ``normal`` their sum,
-    ``shear`` (torsion), ``von_mises`` and ``signed_von_mises``."""
-    keys = ("axial", "bending", "normal", "shear", "von_mises", "signed_von_mises")
+    """Stresses (n, n_spot) [Pa] at every hot spot from its section loads (n, n_spot, 6), SCF applied (see
+    :meth:`wecss.devices.Member.stress_components`): ``axial``, ``bending``, ``normal``, ``shear`` (torsion), and for
+    real loads ``von_mises`` and ``signed_von_mises``; complex amplitudes give the linear components only."""
+    linear = ("axial", "bending", "normal", "shear")
+    keys = linear if np.iscomplexobj(sections) else (*linear, "von_mises", "signed_von_mises")
     cols: dict[str, list[np.ndarray]] = {k: [] for k in keys}
     for k, (member, spot) in enumerate(hot_spots(members)):
-        w = sections[:, k]
-        parts = member.stresses(spot, w)
-        axial = spot.scf * w[:, 0] / member.section.area
-        cols["axial"].append(axial)
-        cols["bending"].append(parts["normal"] - axial)
-        for key in keys[2:]:
+        parts = member.stress_components(spot, sections[:, k])
+        if "von_mises" in keys:
+            parts.update(member.stresses(spot, sections[:, k]))
+        for key in keys:
             cols[key].append(parts[key])
-    n_t = sections.shape[0]
-    return {k: np.stack(v, axis=1) if v else np.zeros((n_t, 0)) for k, v in cols.items()}
+    return {k: np.stack(v, axis=1) if v else np.zeros(sections.shape[:1]) for k, v in cols.items()}
