@@ -151,9 +151,24 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
 """Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
 
 
+_DERIVED = {
+    "_amplitude": "complex amplitude per wave component, Re[X exp(+i omega t)], linearised about equilibrium, of the ",
+    "_equilibrium": "at equilibrium (no waves): ",
+}
+"""Suffixes of the loads group's frequency-domain variables and how their long names begin."""
+
+
 def attrs_for(name: Hashable) -> dict[str, str]:
-    """Return a copy of the attributes of variable ``name`` (empty when the name is unknown)."""
-    return dict(VARIABLE_ATTRS.get(str(name), {}))
+    """Return a copy of the attributes of variable ``name`` (empty when the name is unknown); a name ending in
+    ``_amplitude`` or ``_equilibrium`` takes its base variable's units."""
+    key = str(name)
+    for suffix, lead in _DERIVED.items():
+        base = key.removesuffix(suffix)
+        if base != key and base in VARIABLE_ATTRS:
+            out = dict(VARIABLE_ATTRS[base])
+            out["long_name"] = lead + out["long_name"]
+            return out
+    return dict(VARIABLE_ATTRS.get(key, {}))
 
 
 def apply_attrs(ds: xr.Dataset) -> xr.Dataset:
