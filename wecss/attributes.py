@@ -135,7 +135,7 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
         "units": "N",
     },
     "section_moment": {
-        "long_name": "section moment at the hot spot's station about the section's centre (torque T, My, Mz), member axes",
+        "long_name": "section moment at the hot spot's station about the section centre (T, My, Mz), member axes",
         "units": "N m",
     },
     "axial_stress": {"long_name": "axial stress N/A at the hot spot, times its SCF (tension positive)", "units": "Pa"},

@@ -113,7 +113,7 @@ def _independent_lug_section(ds, device, n_lumps: int = 400) -> np.ndarray:
         a = np.stack([-r * rate**2, 0 * r * rate, -r * acc], axis=1)
         f = mu * dx * (gravity - a)
         force += f
-        moment += np.cross(pivot + [r, 0.0, 0.0] - cut, f)
+        moment += np.cross(pivot + np.array([r, 0.0, 0.0]) - cut, f)
     return np.concatenate([force, moment], axis=1)
 
 

@@ -67,12 +67,12 @@ def load_amplitudes(compiled: CompiledScene, spectral: Spectral) -> tuple[Loads,
             steps[col] = _STEP[k]
             col += 1
     loads = _loads_of(compiled, rows)
-    equilibrium = Loads(*(getattr(loads, f)[:1] for f in _FIELDS[:-1]), 0.0, loads.section[:1])  # type: ignore[call-arg]
+    equilibrium = Loads(**{f: getattr(loads, f)[:1] for f in _FIELDS}, closure=0.0)
     z_hat = np.concatenate([spectral.z_hat[k] for k in keys], axis=0)  # (n_in, n_w)
-    out = []
+    out = {}
     for f in _FIELDS:
         values = getattr(loads, f)
         jac = (values[1::2] - values[2::2]) / (2 * steps.reshape((-1,) + (1,) * (values.ndim - 1)))
-        out.append(np.tensordot(z_hat.T, jac, axes=1))  # (n_w, ...)
-    amplitudes = Loads(*out[:-1], 0.0, out[-1])  # type: ignore[call-arg]
+        out[f] = np.tensordot(z_hat.T, jac, axes=1)  # (n_w, ...)
+    amplitudes = Loads(**out, closure=0.0)
     return equilibrium, amplitudes

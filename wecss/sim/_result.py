@@ -24,7 +24,7 @@ from ..hydro import split_dof
 from ..multibody import difference
 from ..waves import Ramp, energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, motion_notes, step_notes, wave_notes
-from ._load_amplitudes import Spectral, load_amplitudes
+from ._load_amplitudes import load_amplitudes
 from ._loads import Loads, recover_loads
 from ._sections import hot_spot_names, hot_spot_stresses
 
@@ -55,8 +55,10 @@ class Record:
     limits: np.ndarray | None = None
     """Per PTO (4, n_pto): steps with the force at its limit, episodes of it, steps with the stroke beyond its
     limit, episodes of that (None: the run did not count them)."""
-    spectral: Spectral | None = None
-    """A frequency-domain run's equilibrium and complex amplitudes (for the loads' amplitudes per frequency)."""
+    spectral: Any = None
+    """A frequency-domain run's :class:`Spectral` record: its equilibrium and complex amplitudes (for the loads'
+    amplitudes per frequency); None for the time-domain runs. (Typed Any: the runners build Records from dicts of
+    arrays.)"""
 
 
 def limit_counts(stroke: np.ndarray, control: np.ndarray, limits: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
