@@ -7,7 +7,8 @@ section loads at the lug equal an independent lumped-mass free body of the arm's
 output alone, and at the arm's root they are minus the pivot reaction, for every simulator; the loads synthesised
 from a frequency run's amplitudes equal that run's load time series up to the second-order terms the linearisation
 drops (the gap shrinks tenfold with the wave height); the amplitudes equal the first harmonic of a linear and of a
-nonlinear time-domain run in a small regular wave.
+nonlinear time-domain run in a small regular wave; the pivot's vertical reaction amplitude is that of the paper's
+one-DOF model solved by hand.
 """
 
 from __future__ import annotations
@@ -190,3 +191,44 @@ def test_frequency_amplitudes_are_the_first_harmonic_of_a_time_domain_run(method
         gap = np.abs(harmonic - expected).max() / np.abs(expected).max()
         print(f"{method} {name}: {gap:.1e}")
         assert gap < 3e-3  # measured 4e-4 (beeman) and 7e-4 (linear, fitted radiation)
+
+
+def test_pivot_reaction_amplitude_is_the_one_dof_model_s():
+    """The paper's one-DOF model (heave-only hydrodynamics at the wave frequency, massless cylinder, linearised
+    about the horizontal arm; ``wecss.devices.hinged_arm_analytical``), solved by hand in the frequency domain; its
+    pivot reaction from the vertical balance of arm and float: R = m_arm z_cm'' + m z'' - F_cylinder - F_hydro."""
+    height = 0.28
+    omega = 2 * np.pi / T
+    data = wecss.hydro.load("notc-10kw").dataset
+    device = wecss.devices.load("notc-10kw")
+    heave = {"influenced_dof": "floater__Heave", "radiating_dof": "floater__Heave"}
+    added = float(data.added_mass.sel(**heave).interp(omega=omega))
+    damping = float(data.radiation_damping.sel(**heave).interp(omega=omega))
+    x3 = data.excitation.sel(influenced_dof="floater__Heave").isel(wave_direction=0)
+    f3 = height / 2 * complex(x3.interp(omega=omega))
+    m, m_arm = device.model.body("floater").mass, device.model.body("arm").mass
+    a, b1, b = 1.0, 1.2, 2.4  # the spec's A-B, A-C, A-D [m]
+    inertia = device.model.body("arm").inertia[1, 1] + m_arm * (b / 2) ** 2  # about the pivot
+    c0 = np.hypot(a, b1)
+    alpha, beta = a * b1 / c0, -b  # c_dot = alpha theta_dot, z_dot = beta theta_dot
+    k_pto, c_pto = device.ptos[0].stiffness, device.ptos[0].damping
+    k_water = 1000.0 * G * np.pi * 0.76**2  # rho g A_w of the 1.52 m float
+    stiffness = alpha**2 * k_pto + beta**2 * k_water
+    theta = (
+        f3
+        * beta
+        / (
+            -(omega**2) * (inertia + (m + added) * beta**2)
+            + 1j * omega * (c_pto * alpha**2 + damping * beta**2)
+            + stiffness
+        )
+    )
+    z, z_cm = beta * theta, beta / 2 * theta
+    cylinder_z = (k_pto + 1j * omega * c_pto) * alpha * theta * a / c0  # its tension's vertical part on the arm at C
+    hydro = f3 + omega**2 * added * z - 1j * omega * damping * z - k_water * z
+    expected = -(omega**2) * (m_arm * z_cm + m * z) - cylinder_z - hydro
+    ds = _frequency(height)
+    got = complex(ds.joint_reaction_force_amplitude.sel(joint="pivot", axis="z").values[0])
+    print(f"pivot vertical reaction amplitude: one-DOF {expected:.2f} N, MFM {got:.2f} N")
+    assert abs(got - expected) < 1e-4 * abs(expected)  # measured 8e-6
+    assert abs(expected) > 1e3
