@@ -18,6 +18,7 @@ from importlib import resources
 
 import numpy as np
 import pytest
+import xarray as xr
 
 import wecss.devices
 import wecss.hydro
@@ -232,3 +233,12 @@ def test_pivot_reaction_amplitude_is_the_one_dof_model_s():
     print(f"pivot vertical reaction amplitude: one-DOF {expected:.2f} N, MFM {got:.2f} N")
     assert abs(got - expected) < 1e-4 * abs(expected)  # measured 8e-6
     assert abs(expected) > 1e3
+
+
+def test_amplitudes_and_stresses_round_trip_through_netcdf(tmp_path):
+    from wecss.results import open_result, save
+
+    ds = _frequency(0.28, "jonswap")
+    names = ["joint_reaction_force_amplitude", "normal_stress_amplitude", "signed_von_mises_stress_equilibrium"]
+    back = open_result(save(ds, tmp_path / "loads.nc"))
+    xr.testing.assert_identical(back[names], ds[names])
