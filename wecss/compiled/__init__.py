@@ -27,7 +27,10 @@ from ._kernels import workspace as workspace
 from ._kernels import world_jacobian as world_jacobian
 from ._linalg import cholesky as cholesky
 from ._linalg import cholesky_solve as cholesky_solve
+from ._linalg import complex_columns as complex_columns
 from ._linalg import matvec as matvec
+from ._linalg import matvec_add as matvec_add
+from ._linalg import real_part_rows as real_part_rows
 from ._phi import phi_functions as phi_functions
 from ._plant import Plant as Plant
 from ._plant import PtoKind as PtoKind

@@ -688,13 +688,12 @@ def poses(p: Plant, qs: np.ndarray):
     """CoM positions (n_t, n, 3) and rotation vectors (n_t, n, 3) along a record of configurations."""
     n_t = qs.shape[0]
     n = p.com0.shape[0]
-    nv = p.twists.shape[0]
     positions = np.zeros((n_t, n, 3))
     rotations = np.zeros((n_t, n, 3))
-    zero = np.zeros(nv)
+    w = workspace(p)
     for t in range(n_t):
-        rot, pos, _b, _bdot, _omega = kinematics(p, qs[t].copy(), zero)
-        positions[t] = pos
+        place(p, qs[t], w)
+        positions[t] = w.pos
         for i in range(n):
-            rotations[t, i] = so3_log(np.ascontiguousarray(rot[i]))
+            so3_log_into(w.rot[i], rotations[t, i])
     return positions, rotations

@@ -1,5 +1,7 @@
 """Small dense linear algebra for the time loop, written as loops into given arrays.
 
+Also the real forms of complex maps on real data (:func:`complex_columns`, :func:`real_part_rows`).
+
 The equations of motion handle matrices of a few to a few dozen rows (M* is nv x nv, nv = 4 ... 7 for the M4
 layouts). For these sizes a BLAS or LAPACK call costs more than the arithmetic (and can wake BLAS threads that
 spin beside the loop), and each result array is an allocation. These kernels do the arithmetic in place, with no
@@ -133,3 +135,20 @@ def cholesky_solve(factor: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
         for k in range(i + 1, n):
             s -= factor[k, i] * out[k]
         out[i] = s / factor[i, i]
+
+
+def complex_columns(matrix: np.ndarray) -> np.ndarray:
+    """The real matrix R with u @ R viewed as complex equal to u @ matrix, for real u: real and imaginary parts
+    interleaved by column (one real matrix product instead of a complex one)."""
+    out = np.empty((matrix.shape[0], 2 * matrix.shape[1]))
+    out[:, 0::2] = matrix.real
+    out[:, 1::2] = matrix.imag
+    return out
+
+
+def real_part_rows(matrix: np.ndarray) -> np.ndarray:
+    """The real matrix R with z.view(float) @ R = Re(z @ matrix) for complex z (rows interleaved)."""
+    out = np.empty((2 * matrix.shape[0], matrix.shape[1]))
+    out[0::2] = matrix.real
+    out[1::2] = -matrix.imag
+    return out

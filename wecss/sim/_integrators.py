@@ -33,6 +33,7 @@ from ..compiled import (
     integrate_configuration,
     kernel,
     matvec,
+    matvec_add,
     normalise_quaternions,
     reduction_kernel,
     respond,
@@ -149,12 +150,25 @@ def _convolve(r: RadiationArrays, buf: np.ndarray, pos: int, n_h: int) -> np.nda
 def memory_history(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, buf: np.ndarray, pos: int) -> np.ndarray:
     """Memory force at the end of the coming step without the newest-velocity term (world axes) [N, N m]."""
     n_h = u_now.shape[0]
+    out = np.zeros(n_h)
     if r.kind == RadiationKind.STATE_SPACE:
-        zz = r.decay * z + r.hold0 @ u_now.astype(np.complex128)
-        return -np.real(r.output @ zz)
+        matvec(r.history_state, z.view(np.float64), out)
+        matvec_add(r.history_input, u_now, out)
+        return out
     if r.kind == RadiationKind.CONVOLUTION:
         return _convolve(r, buf, pos, n_h)
-    return np.zeros(n_h)
+    return out
+
+
+@kernel
+def _advance_states(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray) -> None:
+    """z <- e^{lambda h} z + hold0 u_now + hold1 u_new, on the real and imaginary parts (``r.hold_real``)."""
+    n_h = u_now.shape[0]
+    both = np.empty(2 * n_h)
+    both[:n_h] = u_now
+    both[n_h:] = u_new
+    z *= r.decay
+    matvec_add(r.hold_real, both, z.view(np.float64))
 
 
 @kernel
@@ -163,7 +177,7 @@ def memory_advance(
 ) -> None:
     """Move the memory over a completed step (states, or the velocity ring buffer, one row per DOF)."""
     if r.kind == RadiationKind.STATE_SPACE:
-        z[:] = r.decay * z + r.hold0 @ u_now.astype(np.complex128) + r.hold1 @ u_new.astype(np.complex128)
+        _advance_states(r, z, u_now, u_new)
     elif r.kind == RadiationKind.CONVOLUTION:
         k = (pos[0] + 1) % r.depth
         buf[:, k] = u_new
@@ -368,13 +382,15 @@ def state_rates(
 ):
     """Rates (q_dot, v_dot, z_dot) of the state-space system, with the PTO data (x, x_dot, f) and the memory force
     (``w``: the kernels' workspace)."""
-    rad = -np.real(r.output @ z)
+    rad = np.empty(exc.shape[0])
+    matvec(r.output_real, z.view(np.float64), rad)
     if configure(p, q, exc + rad, w):
         respond(p, v, np.zeros((exc.shape[0], exc.shape[0])), command, w)  # the memory is all in z
     else:
         w.acc[:] = np.nan
     qd = configuration_rate(p, q, v)
-    zd = r.poles * z + r.input @ w.u.astype(np.complex128)
+    zd = r.poles * z
+    matvec_add(r.input_real, w.u, zd.view(np.float64))
     return qd, w.acc.copy(), zd, w.stroke.copy(), w.xdot.copy(), w.f.copy(), rad
 
 
