@@ -110,13 +110,14 @@ def command_times(repeats: int, quick: bool) -> dict[str, tuple[float, float, fl
 
 
 def pure_python_step(device: str) -> float:
-    """Seconds per step of the state-space scene without numba (short run in a subprocess, WECSS_JIT=0)."""
+    """Seconds per step of the state-space scene without numba (short run in a subprocess, WECSS_JIT=0; the second
+    run, after the first has paid the lazy imports)."""
     code = (
         "import time, dataclasses, sys; sys.path.insert(0, 'studies')\n"
         "from bench_simulator import layout_scene\n"
         "from wecss.sim import compile_scene, simulate\n"
         f"sc = layout_scene({device!r}, 'state_space', 0.6, 0.1)\n"
-        "c = compile_scene(sc)\n"
+        "c = compile_scene(sc); simulate(c)\n"  # the first run also pays the lazy imports
         "t = time.perf_counter(); ds = simulate(c); print((time.perf_counter() - t) / c.n_steps)\n"
     )
     env = {**os.environ, "WECSS_JIT": "0"}
