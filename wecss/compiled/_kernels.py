@@ -300,10 +300,10 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
             cols_dot[:3, iv + 3 : iv + 6] = hat(v[iv : iv + 3].copy()) @ r + hx @ r @ hat(wb)
             cols_dot[3:, iv + 3 : iv + 6] = r @ hat(wb)
             for a in range(6):
-                s = 0.0
+                total = 0.0
                 for c in range(iv, iv + 6):
-                    s += cols[a, c] * v[c]
-                vel[a] = s
+                    total += cols[a, c] * v[c]
+                vel[a] = total
         else:
             if par >= 0:
                 vel[:] = w.spatial[par]
