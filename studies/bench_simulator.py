@@ -1,7 +1,10 @@
 """Benchmark: the nonlinear MFM simulator per time step, for the M4 layouts 111, 132 and 134, with convolution and
 with state-space radiation, beside the paper's 4.4 ms per step (Table 3, MATLAB, 111 layout). Also the embedded
 default scene end to end (M4 134, JONSWAP Hs 0.04 m, Tp 1.2 s, 100 Tp, dt = Tp/200: 20,000 steps) and the pure
-numpy/Python path without numba. Writes the tables into ``docs/benchmarks.md`` (section "Simulator").
+numpy/Python path without numba; RK4 beside Beeman on the state-space scenes; the whole ``wecss run`` command
+with the default scene's radiation (convolution) and with ``radiation.method = "state_space"``. Writes the tables
+into ``docs/benchmarks.md`` (section "Simulator"), opening with the issue 15 targets (per step, the command, the
+linear run) in one table, so one run of this script re-times all three.
 
 Times are medians of repeated runs of ``simulate`` on a compiled scene: the time loop alone (with the excitation)
 and the whole call (with the result Dataset: poses, elevation); compilation, the impulse response and the
@@ -10,17 +13,23 @@ first run of a new process also compiles the numba kernels (cached on disk after
 
     python studies/bench_simulator.py           # full: three layouts, 3 repeats of the 100 Tp scene
     python studies/bench_simulator.py --quick   # m4-111 only, 10 Tp, 1 repeat (CI smoke run; writes nothing)
+
+Run it with OPENBLAS_NUM_THREADS=1 (as the ``wecss run`` commands here are): on a shared machine the CPU-time
+columns are the closer estimate of an idle machine's wall time.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import datetime
 import os
 import platform
 import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 from _common import ROOT, write_section
@@ -42,30 +51,73 @@ def layout_scene(device: str, radiation: str, duration: str | float, ramp: str |
     )
 
 
-def timed(scene: Scene, repeats: int) -> tuple[float, float, float, dict]:
-    """(compile time, median time of simulate(), median time of its time loop, attrs of the last run) [s]."""
+def with_solver(scene: Scene, method: str) -> Scene:
+    """``scene`` with another ``solver.method``."""
+    return dataclasses.replace(scene, solver=dataclasses.replace(scene.solver, method=method))
+
+
+def timed(scene: Scene, repeats: int) -> tuple[float, float, float, dict, float]:
+    """(compile time, median time of simulate(), median time of its time loop, attrs of the last run, median CPU
+    time of simulate()) [s]."""
     start = time.perf_counter()
     compiled = compile_scene(scene)
     compile_time = time.perf_counter() - start
     simulate(compiled)  # warm-up: numba compilation or cache load
-    runs, loops, attrs = [], [], {}
+    runs, loops, cpus, attrs = [], [], [], {}
     for _ in range(repeats):
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.process_time()
         ds = simulate(compiled)
         runs.append(time.perf_counter() - start)
+        cpus.append(time.process_time() - start_cpu)
         loops.append(float(ds.attrs["run_time_s"]))
         attrs = dict(ds.attrs)
-    return compile_time, float(np.median(runs)), float(np.median(loops)), attrs
+    return compile_time, float(np.median(runs)), float(np.median(loops)), attrs, float(np.median(cpus))
+
+
+def command_times(repeats: int, quick: bool) -> dict[str, tuple[float, float, float]]:
+    """Per radiation method: median (wall, CPU, time loop) [s] of the whole ``wecss run`` command on the default
+    scene (10 Tp for ``quick``), warm numba cache, each run in a fresh process (``bench_startup.wall``)."""
+    from bench_startup import ENV, wall
+
+    from wecss.results import open_result
+
+    work = Path(tempfile.mkdtemp())
+    base = [sys.executable, "-m", "wecss.cli", "run"]
+    if quick:
+        scene = work / "short.toml"
+        text = (ROOT / "wecss" / "data" / "scenes" / "default.toml").read_text()
+        scene.write_text(text.replace('"100 Tp"', '"10 Tp"').replace('ramp = "5 Tp"', 'ramp = "1 Tp"'))
+        base.append(str(scene))
+    loops: list[float] = []
+
+    def read_and_clear() -> None:  # the loop time of the last run, then a clean folder for the next
+        if (work / "r.nc").exists():
+            with open_result(work / "r.nc") as ds:
+                loops.append(float(ds.attrs["run_time_s"]))
+        for name in ("r.nc", "r.png"):
+            (work / name).unlink(missing_ok=True)
+
+    out = {}
+    for method in ("convolution", "state_space"):
+        command = [*base, "-o", str(work / "r.nc"), "-q", "--set", f'radiation.method="{method}"']
+        subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True)  # warm the numba cache
+        read_and_clear()
+        loops.clear()
+        run, cpu = wall(command, repeats, work, read_and_clear)
+        read_and_clear()
+        out[method] = (run, cpu, float(np.median(loops)))
+    return out
 
 
 def pure_python_step(device: str) -> float:
-    """Seconds per step of the state-space scene without numba (short run in a subprocess, WECSS_JIT=0)."""
+    """Seconds per step of the state-space scene without numba (short run in a subprocess, WECSS_JIT=0; the second
+    run, after the first has paid the lazy imports)."""
     code = (
         "import time, dataclasses, sys; sys.path.insert(0, 'studies')\n"
         "from bench_simulator import layout_scene\n"
         "from wecss.sim import compile_scene, simulate\n"
         f"sc = layout_scene({device!r}, 'state_space', 0.6, 0.1)\n"
-        "c = compile_scene(sc)\n"
+        "c = compile_scene(sc); simulate(c)\n"  # the first run also pays the lazy imports
         "t = time.perf_counter(); ds = simulate(c); print((time.perf_counter() - t) / c.n_steps)\n"
     )
     env = {**os.environ, "WECSS_JIT": "0"}
@@ -120,31 +172,76 @@ def main() -> None:
     duration, repeats = ("10 Tp", 1) if args.quick else ("100 Tp", 3)
     rows = []
     for device in devices:
-        for radiation in ("state_space", "convolution"):
-            compile_time, run, loop, attrs = timed(layout_scene(device, radiation, duration), repeats)
+        for radiation, method in (("state_space", "beeman"), ("state_space", "rk4"), ("convolution", "beeman")):
+            if method == "rk4" and device == "m4-132":
+                continue
+            scene = with_solver(layout_scene(device, radiation, duration), method)
+            compile_time, run, loop, attrs, cpu = timed(scene, repeats)
             steps = int(attrs["n_steps"])
-            rows.append((device, radiation, attrs["radiation"], compile_time, run, loop, steps, attrs))
-            print(f"{device} {radiation}: loop {loop / steps * 1e6:.1f} us/step, simulate() {run:.2f} s", flush=True)
+            rows.append((device, radiation, method, attrs["radiation"], compile_time, run, loop, steps, attrs, cpu))
+            print(
+                f"{device} {radiation} {method}: loop {loop / steps * 1e6:.1f} us/step, simulate() {run:.2f} s "
+                f"(CPU {cpu:.2f} s)",
+                flush=True,
+            )
     pure = pure_python_step("m4-111")
     lin = linear_times(layout_scene(devices[-1], "state_space", duration), repeats)
+    commands = command_times(repeats, args.quick)
+    load = os.getloadavg()[0]
     numba = "on" if JIT else "off (numba not installed: the pure path)"
+    when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d")
+    per_step = {(d, rad, m): loop / steps for d, rad, m, _, _, _, loop, steps, _, _ in rows}
+    last = devices[-1]
+    targets = [
+        *[
+            (f"{d} state space, Beeman, time loop per step", f"{per_step[(d, 'state_space', 'beeman')] * 1e6:.1f} us",
+             goal)
+            for d, goal in (("m4-111", "10 us"), ("m4-134", "20 us"))
+            if d in devices
+        ],
+        *[
+            (f"{d} state space, RK4, time loop per step", f"{per_step[(d, 'state_space', 'rk4')] * 1e6:.1f} us", "")
+            for d in ("m4-111", "m4-134")
+            if d in devices
+        ],
+        *[
+            (f"`wecss run`{' (10 Tp)' if args.quick else ''}, {m.replace('_', ' ')}: whole command, wall (CPU)",
+             f"{commands[m][0]:.2f} s ({commands[m][1]:.2f} s)", "3 s")
+            for m in ("convolution", "state_space")
+        ],
+        *[
+            (f"`wecss run`{' (10 Tp)' if args.quick else ''}, {m.replace('_', ' ')}: its time loop",
+             f"{commands[m][2]:.2f} s", "0.4 s")
+            for m in ("convolution", "state_space")
+        ],
+        (f"linear run of {last} ({duration}), loop with the excitation", f"{lin['loop'] * 1e3:.1f} ms", "15 ms"),
+        ("the same with the Dataset (whole simulate_linear())", f"{lin['whole'] * 1e3:.1f} ms", "40 ms"),
+    ]  # fmt: skip
     lines = [
         SECTION,
         "",
-        f"`python studies/bench_simulator.py{' --quick' if args.quick else ''}` on {platform.machine()}, "
-        f"Python {platform.python_version()}, numba {numba}; JONSWAP Hs 0.04 m, Tp 1.2 s, gamma 3.3, "
-        f"{duration}, dt = Tp/200 = 6 ms, Beeman predictor-corrector (tolerance 1e-6), PTO damping 6 N m s/rad; "
-        f"medians of {repeats} runs after a warm-up run.",
+        f"`OPENBLAS_NUM_THREADS=1 python studies/bench_simulator.py{' --quick' if args.quick else ''}` on "
+        f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, numba {numba}, {when}; "
+        f"load average {load:.1f} at the end of the run{' (under load: wall times are inflated)' if load > 1.5 else ''}"
+        f"; JONSWAP Hs 0.04 m, Tp 1.2 s, gamma 3.3, {duration}, dt = Tp/200 = 6 ms, Beeman predictor-corrector "
+        f"(tolerance 1e-6), PTO damping 6 N m s/rad; medians of {repeats} runs after a warm-up run.",
         "",
-        "| layout | radiation | model | time loop per step | whole simulate() per step | simulate() | "
-        "evaluations per step | paper's 4.4 ms per step / ours | compile scene (IRF; fit from cache) |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "Targets (issue 15):",
+        "",
+        "| what | measured | target |",
+        "|---|---|---|",
+        *[f"| {what} | {value} | {goal} |" for what, value, goal in targets],
+        "",
+        "| layout | radiation | integrator | model | time loop per step | whole simulate() per step | simulate() "
+        "(CPU) | evaluations per step | paper's 4.4 ms per step / ours | compile scene (IRF; fit from cache) |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for device, radiation, model, compile_time, run, loop, steps, attrs in rows:
+    for device, radiation, method, model, compile_time, run, loop, steps, attrs, cpu in rows:
+        evaluations = f"{attrs['evaluations_per_step']:.2f}" if "evaluations_per_step" in attrs else "4"
         lines.append(
-            f"| {device} | {radiation.replace('_', ' ')} | {model.split(';')[0].split(', every')[0]} | "
-            f"{loop / steps * 1e6:.1f} us | {run / steps * 1e6:.1f} us | {run:.2f} s | "
-            f"{attrs['evaluations_per_step']:.2f} | {PAPER_STEP / (run / steps):,.0f} | {compile_time:.2f} s |"
+            f"| {device} | {radiation.replace('_', ' ')} | {method} | {model.split(';')[0].split(', every')[0]} | "
+            f"{loop / steps * 1e6:.1f} us | {run / steps * 1e6:.1f} us | {run:.2f} s ({cpu:.2f} s) | "
+            f"{evaluations} | {PAPER_STEP / (run / steps):,.0f} | {compile_time:.2f} s |"
         )
     lines += [
         "",

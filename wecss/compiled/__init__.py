@@ -10,8 +10,10 @@ from ._compile import with_linear_gains as with_linear_gains
 from ._jit import JIT as JIT
 from ._jit import kernel as kernel
 from ._jit import reduction_kernel as reduction_kernel
+from ._kernels import Workspace as Workspace
 from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate
+from ._kernels import configure as configure
 from ._kernels import end_stop_force as end_stop_force
 from ._kernels import hydro_velocity as hydro_velocity
 from ._kernels import hydrostatic_force as hydrostatic_force
@@ -20,7 +22,15 @@ from ._kernels import kinematics as kinematics
 from ._kernels import normalise_quaternions as normalise_quaternions
 from ._kernels import poses as poses
 from ._kernels import pto_strokes as pto_strokes
+from ._kernels import respond as respond
+from ._kernels import workspace as workspace
 from ._kernels import world_jacobian as world_jacobian
+from ._linalg import cholesky as cholesky
+from ._linalg import cholesky_solve as cholesky_solve
+from ._linalg import complex_columns as complex_columns
+from ._linalg import matvec as matvec
+from ._linalg import matvec_add as matvec_add
+from ._linalg import real_part_rows as real_part_rows
 from ._phi import phi_functions as phi_functions
 from ._plant import Plant as Plant
 from ._plant import PtoKind as PtoKind

@@ -56,3 +56,15 @@ def reduction_kernel(fn: F) -> F:
     import numba
 
     return numba.njit(cache=True, fastmath={"reassoc", "contract", "arcp"})(fn)  # type: ignore[return-value]
+
+
+def loop_kernel(fallback: Callable[..., Any]) -> Callable[[F], F]:
+    """Compile the decorated loop with numba (fast-math reassociation, as :func:`reduction_kernel`); without
+    numba use ``fallback`` instead: the same operation written with numpy, which the interpreter runs far faster
+    than the loop. Both give the same numbers to rounding (the tests run the pure path against the compiled one).
+    """
+
+    def decorate(fn: F) -> F:
+        return reduction_kernel(fn) if JIT else fallback  # type: ignore[return-value]
+
+    return decorate

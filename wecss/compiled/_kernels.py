@@ -11,9 +11,12 @@ u = Bw v drives the radiation memory.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ._jit import kernel
+from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
 
 _SMALL = 1e-8
@@ -32,18 +35,31 @@ def hat(w: np.ndarray) -> np.ndarray:
 
 
 @kernel
-def so3_log(r: np.ndarray) -> np.ndarray:
+def so3_log_into(r: np.ndarray, out: np.ndarray) -> None:
+    """The rotation vector of the rotation matrix ``r`` (3, 3) into ``out`` (3,) [rad]."""
     cos = min(1.0, max(-1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))
     theta = np.arccos(cos)
-    v = 0.5 * np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    v0, v1, v2 = 0.5 * (r[2, 1] - r[1, 2]), 0.5 * (r[0, 2] - r[2, 0]), 0.5 * (r[1, 0] - r[0, 1])
     if theta < _SMALL:
-        return v
-    if np.pi - theta < 1e-6:
-        sym = (r + np.eye(3)) / 2.0
-        k = int(np.argmax(np.array([sym[0, 0], sym[1, 1], sym[2, 2]])))
-        axis = sym[:, k].copy()
-        return theta * axis / np.sqrt(np.sum(axis**2))
-    return theta / np.sin(theta) * v
+        out[0], out[1], out[2] = v0, v1, v2
+    elif np.pi - theta < 1e-6:
+        diag = np.array([r[0, 0], r[1, 1], r[2, 2]])
+        k = int(np.argmax(diag))  # the column of (R + I)/2 = n n' with the largest entry
+        axis = np.array([r[0, k], r[1, k], r[2, k]])
+        axis[k] += 1.0
+        axis *= theta / np.sqrt(np.sum(axis**2))
+        out[0], out[1], out[2] = axis[0], axis[1], axis[2]
+    else:
+        scale = theta / np.sin(theta)
+        out[0], out[1], out[2] = scale * v0, scale * v1, scale * v2
+
+
+@kernel
+def so3_log(r: np.ndarray) -> np.ndarray:
+    """The rotation vector of the rotation matrix ``r`` (3, 3) [rad]."""
+    out = np.empty(3)
+    so3_log_into(r, out)
+    return out
 
 
 @kernel
@@ -121,51 +137,111 @@ def _compose(r: np.ndarray, r_step: np.ndarray, out: np.ndarray) -> None:
             out[a, b] = r[a, 0] * r_step[0, b] + r[a, 1] * r_step[1, b] + r[a, 2] * r_step[2, b]
 
 
+class Workspace(NamedTuple):
+    """Arrays the kernels fill in place, made once per run by :func:`workspace` (no allocation per evaluation).
+
+    Configuration (filled by :func:`place` and :func:`configure`, functions of q alone)
+        rot (n, 3, 3), trans (n, 3): frame displacement of each body from its reference pose; pos (n, 3) CoM
+        positions; cols (6, nv) joint twists S in world axes; b (6n, nv) B (rows: CoM velocity, body angular
+        velocity); bat (nv, m) its active rows, transposed; bh (n_h, nv) the hydro rows of the world Jacobian Bw;
+        mass (nv, nv) M* and factor its Cholesky factor; gen_config (nv,) the generalised force of the
+        configuration's loads (gravity, buoyancy, hydrostatics and the given hydro force); stroke, gmat (n_pto,),
+        (n_pto, nv) PTO strokes from rest and transmissions
+    Velocity (filled by :func:`move` and :func:`respond`)
+        spatial (n, 6) spatial twists; cols_dot (6, nv) dS/dt; omega (n, 3) body angular velocities; lin (n, 3) CoM
+        velocities; bias (6n,) Bdot v; acc (nv,) accelerations; u (n_h,) hydro velocities (world axes); xdot, f
+        (n_pto,) PTO rates and forces
+    Scratch: force (6n,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
+    vec, vec2, t_step (3,), r_step, r_new (3, 3)
+    """
+
+    rot: np.ndarray
+    trans: np.ndarray
+    pos: np.ndarray
+    cols: np.ndarray
+    b: np.ndarray
+    bat: np.ndarray
+    bh: np.ndarray
+    mass: np.ndarray
+    factor: np.ndarray
+    gen_config: np.ndarray
+    stroke: np.ndarray
+    gmat: np.ndarray
+    spatial: np.ndarray
+    cols_dot: np.ndarray
+    omega: np.ndarray
+    lin: np.ndarray
+    bias: np.ndarray
+    acc: np.ndarray
+    u: np.ndarray
+    xdot: np.ndarray
+    f: np.ndarray
+    force: np.ndarray
+    disp: np.ndarray
+    restoring: np.ndarray
+    load: np.ndarray
+    inertial: np.ndarray
+    mass_work: np.ndarray
+    gen: np.ndarray
+    partial: np.ndarray
+    vec: np.ndarray
+    vec2: np.ndarray
+    r_step: np.ndarray
+    r_new: np.ndarray
+    t_step: np.ndarray
+
+
 @kernel
-def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
-    """Rotations (n, 3, 3), CoM positions (n, 3), B (6n, nv), Bdot (6n, nv) and body angular velocities (n, 3)."""
+def workspace(p: Plant) -> Workspace:
+    """A :class:`Workspace` for the plant ``p``."""
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
-    rot = np.zeros((n, 3, 3))
-    trans = np.zeros((n, 3))  # frame displacement G = (rot, trans) of each body from its reference pose
-    spatial = np.zeros((n, 6))
-    cols = np.zeros((6, nv))
-    cols_dot = np.zeros((6, nv))
-    pos = np.zeros((n, 3))
-    r_step = np.zeros((3, 3))
-    r_new = np.zeros((3, 3))
-    t_step = np.zeros(3)
-    tmp = np.zeros(3)
-    tmp2 = np.zeros(3)
-    lin = np.zeros(3)
-    w_b = np.zeros(3)
-    rts = np.zeros(3)
-    rtsd = np.zeros(3)
+    m = p.active.shape[0]
+    n_h = p.hydro_index.shape[0]
+    n_pto = p.pto_kind.shape[0]
+    return Workspace(
+        np.zeros((n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((6, nv)), np.zeros((6 * n, nv)),
+        np.zeros((nv, m)), np.zeros((n_h, nv)), np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros(nv),
+        np.zeros(n_pto), np.zeros((n_pto, nv)),
+        np.zeros((n, 6)), np.zeros((6, nv)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(6 * n), np.zeros(nv),
+        np.zeros(n_h), np.zeros(n_pto), np.zeros(n_pto),
+        np.zeros(6 * n), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
+        np.zeros(6), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3),
+    )  # fmt: skip
+
+
+@kernel
+def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
+    """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w``."""
+    n = p.com0.shape[0]
+    nv = p.twists.shape[0]
+    rot, trans, cols, b = w.rot, w.trans, w.cols, w.b
+    tmp, tmp2, t_step = w.vec, w.vec2, w.t_step
+    cols[:, :] = 0.0
     for idx in range(n):
         i = p.order[idx]
         par = p.parent[i]
-        r = np.eye(3)
-        t = np.zeros(3)
-        vel = np.zeros(6)
+        r = rot[i]
+        t = trans[i]
         if par >= 0:
             r[:, :] = rot[par]
             t[:] = trans[par]
-            vel[:] = spatial[par]
+        else:
+            r[:, :] = 0.0
+            for a in range(3):
+                r[a, a] = 1.0
+            t[:] = 0.0
         iv = p.col_start[i]
         iq = p.q_start[i]
         if p.free[i] == 1:
             x = q[iq : iq + 3].copy()
-            r = quat_to_matrix(q[iq + 3 : iq + 7].copy())
-            t = x - r @ p.com0[i]
+            r[:, :] = quat_to_matrix(q[iq + 3 : iq + 7].copy())
+            t[:] = x - r @ p.com0[i]
             hx = hat(x)
-            wb = v[iv + 3 : iv + 6].copy()
             for a in range(3):
                 cols[a, iv + a] = 1.0
             cols[:3, iv + 3 : iv + 6] = hx @ r
             cols[3:, iv + 3 : iv + 6] = r
-            cols_dot[:3, iv + 3 : iv + 6] = hat(v[iv : iv + 3].copy()) @ r + hx @ r @ hat(wb)
-            cols_dot[3:, iv + 3 : iv + 6] = r @ hat(wb)
-            vel = np.ascontiguousarray(cols[:, iv : iv + 6]) @ v[iv : iv + 6].copy()
         else:
             for k in range(p.n_cols[i]):
                 col = iv + k
@@ -178,8 +254,65 @@ def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
                 _cross(t, tmp, t_step)
                 for a in range(3):
                     cols[a, col] = tmp2[a] + t_step[a]
-                # dS/dt = [V, S]: (w_V x v_S - w_S x v_V, w_V x w_S)
+                # G <- G exp(xi q)
+                _screw(xi, q[iq + k], w.r_step, t_step)
+                _rotate(r, t_step, tmp)
+                for a in range(3):
+                    t[a] += tmp[a]
+                _compose(r, w.r_step, w.r_new)
+                r[:, :] = w.r_new
+        _rotate(r, p.com0[i], tmp)
+        for a in range(3):
+            w.pos[i, a] = tmp[a] + t[a]
+    # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
+    for i in range(n):
+        r = rot[i]
+        pi = w.pos[i]
+        for c in range(nv):
+            if p.chain[i, c] == 0.0:
+                for a in range(6):
+                    b[6 * i + a, c] = 0.0
+                continue
+            s = cols[:, c]
+            _cross(pi, s[3:], tmp)
+            for a in range(3):
+                b[6 * i + a, c] = s[a] - tmp[a]
+                b[6 * i + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+
+
+@kernel
+def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
+    """The velocity part of the kinematics at the configuration in ``w`` (:func:`place`): spatial twists, dS/dt,
+    body angular velocities, CoM velocities and Bdot v, into ``w``."""
+    n = p.com0.shape[0]
+    nv = p.twists.shape[0]
+    cols, cols_dot, vel = w.cols, w.cols_dot, w.partial
+    tmp, tmp2 = w.vec, w.vec2
+    for idx in range(n):
+        i = p.order[idx]
+        par = p.parent[i]
+        iv = p.col_start[i]
+        if p.free[i] == 1:  # dS/dt of a free base: its translation columns are constant
+            r = w.rot[i]
+            wb = v[iv + 3 : iv + 6].copy()
+            hx = hat(w.pos[i].copy())
+            cols_dot[:, iv : iv + 3] = 0.0
+            cols_dot[:3, iv + 3 : iv + 6] = hat(v[iv : iv + 3].copy()) @ r + hx @ r @ hat(wb)
+            cols_dot[3:, iv + 3 : iv + 6] = r @ hat(wb)
+            for a in range(6):
+                total = 0.0
+                for c in range(iv, iv + 6):
+                    total += cols[a, c] * v[c]
+                vel[a] = total
+        else:
+            if par >= 0:
+                vel[:] = w.spatial[par]
+            else:
+                vel[:] = 0.0
+            for k in range(p.n_cols[i]):
+                col = iv + k
                 s = cols[:, col]
+                # dS/dt = [V, S]: (w_V x v_S - w_S x v_V, w_V x w_S)
                 _cross(vel[3:], s[:3], tmp)
                 _cross(s[3:], vel[:3], tmp2)
                 for a in range(3):
@@ -189,54 +322,67 @@ def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
                     cols_dot[3 + a, col] = tmp[a]
                 for a in range(6):
                     vel[a] += s[a] * v[col]
-                # G <- G exp(xi q)
-                _screw(xi, q[iq + k], r_step, t_step)
-                _rotate(r, t_step, tmp)
-                t = t + tmp
-                _compose(r, r_step, r_new)
-                r[:, :] = r_new
-        rot[i] = r
-        trans[i] = t
-        spatial[i] = vel
-        _rotate(r, p.com0[i], tmp)
-        pos[i] = tmp + t
-    b = np.zeros((6 * n, nv))
-    bdot = np.zeros((6 * n, nv))
-    omega = np.zeros((n, 3))
+        w.spatial[i] = vel
+    # per body: CoM velocity, body angular velocity, and Bdot_i v = [-lin x w + A_lin - p x A_ang; R' A_ang] with
+    # A = sum over the body's columns of v_c dS_c/dt (the columns' -hat(w_b) R' terms sum to -w_b x w_b = 0)
+    acc = w.partial
     for i in range(n):
-        r = rot[i]
-        pi = pos[i]
-        # CoM velocity and body angular velocity from the spatial twist of the body
-        vel = spatial[i]
-        w_world = vel[3:]
-        _cross(pi, w_world, tmp)
+        r = w.rot[i]
+        pi = w.pos[i]
+        spatial = w.spatial[i]
+        _cross(pi, spatial[3:], tmp)
         for a in range(3):
-            lin[a] = vel[a] - tmp[a]
+            w.lin[i, a] = spatial[a] - tmp[a]
+            w.omega[i, a] = r[0, a] * spatial[3] + r[1, a] * spatial[4] + r[2, a] * spatial[5]
+        acc[:] = 0.0
+        for c in range(nv):
+            if p.chain[i, c] != 0.0:
+                for a in range(6):
+                    acc[a] += cols_dot[a, c] * v[c]
+        _cross(w.lin[i], spatial[3:], tmp)
+        _cross(pi, acc[3:], tmp2)
         for a in range(3):
-            w_b[a] = r[0, a] * w_world[0] + r[1, a] * w_world[1] + r[2, a] * w_world[2]
-        omega[i, :] = w_b
+            w.bias[6 * i + a] = -tmp[a] + acc[a] - tmp2[a]
+            w.bias[6 * i + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
+
+
+@kernel
+def _bdot(p: Plant, w: Workspace) -> np.ndarray:
+    """Bdot (6n, nv) from the kinematics in ``w`` (:func:`place` and :func:`move`): column by column,
+    Bdot_i = [[0, -hat(p_dot)], [0, -hat(w_b) R']] S + [[I, -hat(p)], [0, R']] dS/dt."""
+    n = p.com0.shape[0]
+    nv = p.twists.shape[0]
+    bdot = np.zeros((6 * n, nv))
+    tmp, tmp2 = np.zeros(3), np.zeros(3)
+    rts, rtsd = np.zeros(3), np.zeros(3)
+    for i in range(n):
+        r = w.rot[i]
+        pi = w.pos[i]
         for c in range(nv):
             if p.chain[i, c] == 0.0:
                 continue
-            s = cols[:, c]
-            sd = cols_dot[:, c]
-            # B_i = [[I, -hat(p)], [0, R']] S
-            _cross(pi, s[3:], tmp)
-            for a in range(3):
-                b[6 * i + a, c] = s[a] - tmp[a]
-                b[6 * i + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
-            # Bdot_i = [[0, -hat(p_dot)], [0, -hat(w_b) R']] S + [[I, -hat(p)], [0, R']] dS/dt
-            _cross(lin, s[3:], tmp)
+            s = w.cols[:, c]
+            sd = w.cols_dot[:, c]
+            _cross(w.lin[i], s[3:], tmp)
             _cross(pi, sd[3:], tmp2)
             for a in range(3):
                 bdot[6 * i + a, c] = -tmp[a] + sd[a] - tmp2[a]
             for a in range(3):
                 rts[a] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
                 rtsd[a] = r[0, a] * sd[3] + r[1, a] * sd[4] + r[2, a] * sd[5]
-            _cross(w_b, rts, tmp)
+            _cross(w.omega[i], rts, tmp)
             for a in range(3):
                 bdot[6 * i + 3 + a, c] = -tmp[a] + rtsd[a]
-    return rot, pos, b, bdot, omega
+    return bdot
+
+
+@kernel
+def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
+    """Rotations (n, 3, 3), CoM positions (n, 3), B (6n, nv), Bdot (6n, nv) and body angular velocities (n, 3)."""
+    w = workspace(p)
+    place(p, q, w)
+    move(p, v, w)
+    return w.rot, w.pos, w.b, _bdot(p, w), w.omega
 
 
 @kernel
@@ -255,15 +401,34 @@ def world_jacobian(rot: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 @kernel
-def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray):
-    """PTO strokes x (n_pto,) [m or rad] and transmissions G (n_pto, nv) with x_dot = G v."""
-    n_pto = p.pto_kind.shape[0]
+def _hydro_jacobian(p: Plant, w: Workspace) -> None:
+    """The hydro DOFs' rows of Bw into ``w.bh`` (world axes: rotational rows are R times B's body-axis rows)."""
+    nv = p.twists.shape[0]
+    hi = p.hydro_index
+    for k in range(hi.shape[0]):
+        i = hi[k] // 6
+        a = hi[k] % 6
+        if a < 3:
+            for c in range(nv):
+                w.bh[k, c] = w.b[hi[k], c]
+        else:
+            r = w.rot[i]
+            for c in range(nv):
+                w.bh[k, c] = (
+                    r[a - 3, 0] * w.b[6 * i + 3, c] + r[a - 3, 1] * w.b[6 * i + 4, c] + r[a - 3, 2] * w.b[6 * i + 5, c]
+                )
+
+
+@kernel
+def _pto_strokes_into(
+    p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray, x: np.ndarray, gmat: np.ndarray
+) -> None:
+    """PTO strokes (n_pto,) [m or rad] into ``x`` and transmissions (n_pto, nv) into ``gmat`` (x_dot = G v)."""
     nv = b.shape[1]
-    x = np.zeros(n_pto)
-    gmat = np.zeros((n_pto, nv))
-    for k in range(n_pto):
+    for k in range(p.pto_kind.shape[0]):
         if p.pto_kind[k] == PtoKind.JOINT:
             x[k] = q[p.pto_coordinate[k]]
+            gmat[k, :] = 0.0
             gmat[k, p.pto_velocity[k]] = 1.0
         else:
             ends = np.zeros((2, 3))
@@ -281,25 +446,46 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
             length = np.sqrt(np.sum(d**2))
             x[k] = length
             gmat[k] = (d / length) @ (jac[0] - jac[1])
+
+
+@kernel
+def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray):
+    """PTO strokes x (n_pto,) [m or rad] and transmissions G (n_pto, nv) with x_dot = G v."""
+    n_pto = p.pto_kind.shape[0]
+    x = np.zeros(n_pto)
+    gmat = np.zeros((n_pto, b.shape[1]))
+    _pto_strokes_into(p, q, rot, pos, b, x, gmat)
     return x, gmat
 
 
 @kernel
-def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
-    """Gravity, buoyancy and linear hydrostatic restoring force, world axes (6n,) [N, N m]."""
+def _hydrostatic_into(
+    p: Plant, rot: np.ndarray, pos: np.ndarray, disp: np.ndarray, restoring: np.ndarray, out: np.ndarray
+) -> None:
+    """Gravity, buoyancy and the linear hydrostatic restoring force, world axes, into ``out`` (6n,) [N, N m]
+    (``disp`` and ``restoring`` (n_h,) are scratch)."""
     hi = p.hydro_index
-    disp = np.empty(hi.shape[0])
+    rv = np.empty(3)
     for k in range(hi.shape[0]):
         i = hi[k] // 6
         a = hi[k] % 6
         if a < 3:
             disp[k] = pos[i, a] - p.com0[i, a]
         else:
-            disp[k] = so3_log(rot[i])[a - 3]
-    out = p.static_force.copy()
-    restoring = p.hydrostatic_stiffness @ disp
+            so3_log_into(rot[i], rv)
+            disp[k] = rv[a - 3]
+    out[:] = p.static_force
+    matvec(p.hydrostatic_stiffness, disp, restoring)
     for k in range(hi.shape[0]):
         out[hi[k]] -= restoring[k]
+
+
+@kernel
+def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
+    """Gravity, buoyancy and linear hydrostatic restoring force, world axes (6n,) [N, N m]."""
+    n_h = p.hydro_index.shape[0]
+    out = np.empty(p.static_force.shape[0])
+    _hydrostatic_into(p, rot, pos, np.empty(n_h), np.empty(n_h), out)
     return out
 
 
@@ -319,10 +505,97 @@ def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
 
 
 @kernel
+def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) -> bool:
+    """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` alone, into ``w``:
+    the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of gravity, buoyancy,
+    hydrostatics and ``hydro_force`` (n_h,) [N, N m] (excitation plus the memory force fixed by the past, world
+    axes), the PTO strokes and transmissions. Within a step of a predictor-corrector only the velocity changes:
+    :func:`respond` then reuses all of this.
+
+    Returns False when M* is not positive definite (a degenerate configuration).
+    """
+    place(p, q, w)
+    _hydro_jacobian(p, w)
+    act = p.active
+    for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
+        for c in range(w.bat.shape[0]):
+            w.bat[c, k] = w.b[act[k], c]
+    congruence(w.bat, p.active_mass, w.mass_work, w.mass)
+    ok = cholesky(w.mass, w.factor)
+    # world loads: gravity, buoyancy, hydrostatics and the given hydro force; through Bw, that is B with the
+    # moments in body axes
+    force = w.force
+    _hydrostatic_into(p, w.rot, w.pos, w.disp, w.restoring, force)
+    hi = p.hydro_index
+    for k in range(hi.shape[0]):
+        force[hi[k]] += hydro_force[k]
+    for i in range(p.com0.shape[0]):
+        _rotate(w.rot[i].T, force[6 * i + 3 : 6 * i + 6], w.vec)
+        force[6 * i + 3 : 6 * i + 6] = w.vec
+    w.gen_config[:] = 0.0
+    matvec_t_add(w.b, force, w.gen_config)
+    _pto_strokes_into(p, q, w.rot, w.pos, w.b, w.stroke, w.gmat)
+    for k in range(w.stroke.shape[0]):
+        w.stroke[k] -= p.pto_rest[k]
+    return ok
+
+
+@kernel
+def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace) -> None:
+    """Generalised accelerations at the velocities ``v`` and the configuration in ``w`` (:func:`configure`), into
+    ``w.acc``; also the hydro velocities ``w.u``, the PTO rates ``w.xdot`` and forces ``w.f`` (the controller's,
+    saturated at the force limit, plus the device spring; the end stops act besides).
+
+    Parameters
+    ----------
+    newest : (n_h, n_h)
+        Memory force per unit hydro velocity at this instant (added as ``newest @ u``).
+    command : (n_pto,)
+        Controller force held over the step [N or N m] (added to the device spring and the linear gains).
+    """
+    move(p, v, w)
+    act = p.active
+    m = act.shape[0]
+    # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows
+    for k in range(m):
+        s = 0.0
+        for j in range(m):
+            s += p.active_mass[k, j] * w.bias[act[j]]
+        row = act[k]
+        if row % 6 >= 3:
+            i = row // 6
+            _rotate(p.inertia[i], w.omega[i], w.vec)
+            _cross(w.omega[i], w.vec, w.vec2)
+            s += w.vec2[row % 6 - 3]
+        w.inertial[k] = -s
+    gen = w.gen
+    gen[:] = w.gen_config
+    matvec_add(w.bat, w.inertial, gen)
+    for c in range(gen.shape[0]):
+        gen[c] -= p.joint_damping[c] * v[c]  # the joints' own losses
+    # the memory force of the newest hydro velocity, through Bw
+    matvec(w.bh, v, w.u)
+    matvec(newest, w.u, w.load)
+    matvec_t_add(w.bh, w.load, gen)
+    # the controller's force, saturated at the PTO's force limit, the device spring, and the end stops
+    matvec(w.gmat, v, w.xdot)
+    for k in range(w.stroke.shape[0]):
+        x, xdot = w.stroke[k], w.xdot[k]
+        control = command[k] - p.pto_damping[k] * xdot - p.pto_stiffness[k] * x
+        limit = p.pto_force_limit[k]
+        w.f[k] = min(max(control, -limit), limit) - p.pto_spring[k] * x
+        total = w.f[k] + end_stop(p, k, x, xdot)
+        for c in range(gen.shape[0]):
+            gen[c] += w.gmat[k, c] * total
+    cholesky_solve(w.factor, gen, w.acc)
+
+
+@kernel
 def accelerations(
     p: Plant, q: np.ndarray, v: np.ndarray, hydro_force: np.ndarray, newest: np.ndarray, pto_command: np.ndarray
 ):
-    """Generalised accelerations of the MFM equations (Eq. 46) with all loads.
+    """Generalised accelerations of the MFM equations (Eq. 46) with all loads (:func:`configure` and
+    :func:`respond` in a new workspace; the time loops call those two on their own workspace).
 
     Parameters
     ----------
@@ -335,70 +608,26 @@ def accelerations(
 
     Returns
     -------
-    a : (nv,) accelerations; u : (n_h,) hydro velocities; x, x_dot, f : (n_pto,) PTO stroke from rest, rate and
-    force (the controller's, saturated at the force limit, plus the device spring; the end stops act besides);
-    mass : (nv, nv) M*.
+    a : (nv,) accelerations (NaN where M* is not positive definite); u : (n_h,) hydro velocities; x, x_dot, f :
+    (n_pto,) PTO stroke from rest, rate and force (the controller's, saturated at the force limit, plus the device
+    spring; the end stops act besides); mass : (nv, nv) M*.
     """
-    rot, pos, b, bdot, omega = kinematics(p, q, v)
-    n = pos.shape[0]
-    nv = v.shape[0]
-    bw = world_jacobian(rot, b)
-    # only the Cartesian rows that can move (``Plant.active``: x, z and pitch of a planar device)
-    act = p.active
-    m = act.shape[0]
-    ba = np.empty((m, nv))
-    bda_v = np.empty(m)
-    bdv = bdot @ v
-    for k in range(m):
-        ba[k] = b[act[k]]
-        bda_v[k] = bdv[act[k]]
-    mass = ba.T @ (p.active_mass @ ba)
-    # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows
-    gyro = np.zeros(6 * n)
-    for i in range(n):
-        jw = p.inertia[i] @ omega[i]
-        gyro[6 * i + 3 : 6 * i + 6] = np.cross(omega[i], jw)
-    rhs = -(p.active_mass @ bda_v)
-    for k in range(m):
-        rhs[k] -= gyro[act[k]]
-    hi = p.hydro_index
-    u = hydro_rows(bw, v, hi)
-    load = hydro_force + newest @ u
-    force = hydrostatic_force(p, rot, pos)
-    for k in range(hi.shape[0]):
-        force[hi[k]] += load[k]
-    # generalised force: world loads through Bw; inertial terms (body-axis moments) through B
-    gen = bw.T @ force + ba.T @ rhs - p.joint_damping * v  # the joints' own losses
-    stroke, gmat = pto_strokes(p, q, rot, pos, b)
-    x = stroke - p.pto_rest
-    xdot = gmat @ v
-    # the controller's force, saturated at the PTO's force limit, and the device spring
-    control = pto_command - p.pto_damping * xdot - p.pto_stiffness * x
-    f = np.minimum(np.maximum(control, -p.pto_force_limit), p.pto_force_limit) - p.pto_spring * x
-    gen += gmat.T @ f
-    for k in range(x.shape[0]):  # the end stops, where engaged (no allocation on the usual path)
-        stop = end_stop(p, k, x[k], xdot[k])
-        if stop != 0.0:
-            gen += gmat[k] * stop
-    a = np.linalg.solve(0.5 * (mass + mass.T), gen)
-    return a, u, x, xdot, f, mass
+    w = workspace(p)
+    if configure(p, q, hydro_force, w):
+        respond(p, v, newest, pto_command, w)
+    else:
+        w.acc[:] = np.nan
+    return w.acc, w.u, w.stroke, w.xdot, w.f, w.mass
 
 
 @kernel
 def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Velocities of the hydro DOFs (world axes) [m/s, rad/s]."""
-    rot, _pos, b, _bdot, _omega = kinematics(p, q, v)
-    return hydro_rows(world_jacobian(rot, b), v, p.hydro_index)
-
-
-@kernel
-def hydro_rows(bw: np.ndarray, v: np.ndarray, hydro_index: np.ndarray) -> np.ndarray:
-    """The hydro DOFs' rows of Bw v: their velocities in world axes [m/s, rad/s]."""
-    bwv = bw @ v
-    u = np.zeros(hydro_index.shape[0])
-    for k in range(hydro_index.shape[0]):
-        u[k] = bwv[hydro_index[k]]
-    return u
+    w = workspace(p)
+    place(p, q, w)
+    _hydro_jacobian(p, w)
+    matvec(w.bh, v, w.u)
+    return w.u
 
 
 @kernel
@@ -459,13 +688,12 @@ def poses(p: Plant, qs: np.ndarray):
     """CoM positions (n_t, n, 3) and rotation vectors (n_t, n, 3) along a record of configurations."""
     n_t = qs.shape[0]
     n = p.com0.shape[0]
-    nv = p.twists.shape[0]
     positions = np.zeros((n_t, n, 3))
     rotations = np.zeros((n_t, n, 3))
-    zero = np.zeros(nv)
+    w = workspace(p)
     for t in range(n_t):
-        rot, pos, _b, _bdot, _omega = kinematics(p, qs[t].copy(), zero)
-        positions[t] = pos
+        place(p, qs[t], w)
+        positions[t] = w.pos
         for i in range(n):
-            rotations[t, i] = so3_log(np.ascontiguousarray(rot[i]))
+            so3_log_into(w.rot[i], rotations[t, i])
     return positions, rotations

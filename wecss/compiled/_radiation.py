@@ -8,6 +8,10 @@ State space, in complex modal form (one state per real pole or conjugate pair): 
 F = -Re(c z). Over a step the velocity is taken linear in time (first-order hold), which the exponential
 integrates exactly: z1 = e^{lambda h} z0 + h (phi1 - phi2) b u0 + h phi2 b u1, phi1 = (e - 1)/(lambda h),
 phi2 = (e - 1 - lambda h)/(lambda h)^2. Unconditionally stable and second order, like the Beeman scheme.
+The time loop applies these maps in real form, on the real and imaginary parts of z side by side
+(``z.view(float)``): the hydro velocities are real, so a complex product with them wastes half its
+multiplications, and the part of the force fixed at the start of a step, -Re(c (e^{lambda h} z0 + h (phi1 - phi2)
+b u0)), is one real product with z0 and one with u0.
 
 Convolution, by the trapezoidal rule on the simulation step, entry by entry: each kernel entry that
 ``wecss.radiation.significant_couplings`` keeps has its own memory (MEMORY_FACTOR times its 1 % truncation
@@ -23,6 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..radiation import MEMORY_FACTOR, ImpulseResponse, RadiationStateSpace, significant_couplings
+from ._linalg import complex_columns, real_part_rows
 from ._phi import phi_functions
 
 FINE_MEMORY: float = 3.0
@@ -53,6 +58,11 @@ class RadiationArrays(NamedTuple):
     way in ``coarse``; values carry the quadrature weights and the sign (force = sum of value * velocity), and
     entries with a shorter memory are padded with zeros. ``depth``: length of the velocity ring buffer.
     Both: ``newest`` (n_h, n_h), the memory force per unit new velocity.
+    State space in real form, on the interleaved real and imaginary parts ``z.view(float)`` (2 nz,):
+    ``output_real`` (n_h, 2 nz) with F = output_real @ z.view(float) = -Re(output z); ``input_real`` (2 nz, n_h)
+    the rows of ``input`` (b u); ``history_state`` (n_h, 2 nz) and ``history_input`` (n_h, n_h), the force at the
+    end of a step without its newest-velocity term, history_state @ z0.view(float) + history_input @ u0; and
+    ``hold_real`` (2 nz, 2 n_h), the step's input [hold0, hold1] @ [u0, u1].
     """
 
     kind: int
@@ -73,6 +83,11 @@ class RadiationArrays(NamedTuple):
     stride: int
     depth: int
     newest: np.ndarray
+    output_real: np.ndarray
+    input_real: np.ndarray
+    history_state: np.ndarray
+    history_input: np.ndarray
+    hold_real: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -124,6 +139,11 @@ def _empty(n_h: int, kind: RadiationKind, newest: np.ndarray) -> dict:
         "stride": 1,
         "depth": 1,
         "newest": newest,
+        "output_real": np.zeros((n_h, 0)),
+        "input_real": np.zeros((0, n_h)),
+        "history_state": np.zeros((n_h, 0)),
+        "history_input": np.zeros((n_h, n_h)),
+        "hold_real": np.zeros((0, 2 * n_h)),
     }
 
 
@@ -148,6 +168,11 @@ def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationAr
         decay=np.exp(lam * dt),
         hold0=np.ascontiguousarray(hold0),
         hold1=np.ascontiguousarray(hold1),
+        output_real=np.ascontiguousarray(-real_part_rows(output.T).T),
+        input_real=np.ascontiguousarray(complex_columns(inp.T).T),
+        history_state=np.ascontiguousarray(-real_part_rows((output * np.exp(lam * dt)[None, :]).T).T),
+        history_input=-np.real(output @ hold0),
+        hold_real=np.ascontiguousarray(np.hstack([complex_columns(hold0.T).T, complex_columns(hold1.T).T])),
     )
     max_pole = float(np.max(np.abs(lam))) if lam.size else 0.0
     return RadiationArrays(**arrays), RadiationSummary("state_space", states=int(lam.size), max_pole=max_pole)

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compiled import kernel, phi_functions
+from ..compiled import complex_columns, kernel, phi_functions, real_part_rows
 
 CONDITION_LIMIT: float = 1e8
 """Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""
@@ -144,23 +144,6 @@ class ModalSteps:
     free_input1: np.ndarray
 
 
-def complex_columns(matrix: np.ndarray) -> np.ndarray:
-    """The real matrix R with u @ R viewed as complex equal to u @ matrix, for real u: real and imaginary parts
-    interleaved by column (one real matrix product instead of a complex one)."""
-    out = np.empty((matrix.shape[0], 2 * matrix.shape[1]))
-    out[:, 0::2] = matrix.real
-    out[:, 1::2] = matrix.imag
-    return out
-
-
-def real_part_rows(matrix: np.ndarray) -> np.ndarray:
-    """The real matrix R with z.view(float) @ R = Re(z @ matrix) for complex z (rows interleaved)."""
-    out = np.empty((2 * matrix.shape[0], matrix.shape[1]))
-    out[0::2] = matrix.real
-    out[1::2] = -matrix.imag
-    return out
-
-
 @kernel
 def modal_recursion(decay: np.ndarray, forcing: np.ndarray, z0: np.ndarray) -> np.ndarray:
     """z_{k+1} = decay z_k + forcing_k for k = 0 ... n - 1; returns z_0 ... z_n (n + 1, n_modes)."""
@@ -182,9 +165,20 @@ BLOCK_STEPS: int = 512
 def input_forcing(steps: ModalSteps, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """What the inputs u (n, m) [one row per step] add over the n - 1 steps between them: to the modal
     coordinates (complex (n - 1, n_modes)) and to the free states ((n - 1, n_free))."""
+    return _forcing(_input_maps(steps), u)
+
+
+def _input_maps(steps: ModalSteps) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The real matrices of :func:`input_forcing` (made once per run, not per block)."""
+    return complex_columns(steps.input0.T), complex_columns(steps.input1.T), steps.free_input0.T, steps.free_input1.T
+
+
+def _forcing(maps: tuple[np.ndarray, ...], u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     u = np.ascontiguousarray(u, dtype=float)
-    modes = (u[:-1] @ complex_columns(steps.input0.T) + u[1:] @ complex_columns(steps.input1.T)).view(np.complex128)
-    return modes, u[:-1] @ steps.free_input0.T + u[1:] @ steps.free_input1.T
+    modes0, modes1, free0, free1 = maps
+    modes = u[:-1] @ modes0
+    modes += u[1:] @ modes1
+    return modes.view(np.complex128), u[:-1] @ free0 + u[1:] @ free1
 
 
 def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np.ndarray | None = None) -> np.ndarray:
@@ -194,20 +188,23 @@ def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np
     x0 = np.zeros(form.n_states) if x0 is None else np.asarray(x0, dtype=float)
     free_modes = real_part_rows(steps.free_state.T)
     out_modes, out_free = form.output_maps(c)
+    maps = _input_maps(steps)
     y = np.empty((u.shape[0], out_free.shape[1]))
     z = (form.inverse @ x0[form.rest]).astype(complex)
     free = x0[form.free].copy()
     for k0 in range(0, u.shape[0], BLOCK_STEPS):
         k1 = min(u.shape[0], k0 + BLOCK_STEPS)  # block of steps k0 ... k1 - 1, started from z_k0
-        forcing, free_forcing = input_forcing(steps, u[k0:k1])
+        forcing, free_forcing = _forcing(maps, u[k0:k1])
         block = modal_recursion(steps.decay, forcing, z).view(np.float64)
         frees = np.empty((k1 - k0, free.size))
         frees[0] = free
         np.cumsum(block[:-1] @ free_modes + free_forcing, axis=0, out=frees[1:])
         frees[1:] += free
-        y[k0:k1] = block @ out_modes + frees @ out_free
+        np.matmul(block, out_modes, out=y[k0:k1])
+        if free.size:
+            y[k0:k1] += frees @ out_free
         if k1 < u.shape[0]:  # the step from k1 - 1 to k1 starts the next block
-            forcing, free_forcing = input_forcing(steps, u[k1 - 1 : k1 + 1])
+            forcing, free_forcing = _forcing(maps, u[k1 - 1 : k1 + 1])
             z = steps.decay * block[-1].view(np.complex128) + forcing[0]
             free = frees[-1] + block[-1] @ free_modes + free_forcing[0]
     return y

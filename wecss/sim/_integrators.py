@@ -27,12 +27,16 @@ from ..compiled import (
     Plant,
     RadiationArrays,
     RadiationKind,
-    accelerations,
+    Workspace,
     configuration_rate,
+    configure,
     integrate_configuration,
     kernel,
+    matvec,
+    matvec_add,
     normalise_quaternions,
     reduction_kernel,
+    respond,
 )
 
 
@@ -146,12 +150,25 @@ def _convolve(r: RadiationArrays, buf: np.ndarray, pos: int, n_h: int) -> np.nda
 def memory_history(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, buf: np.ndarray, pos: int) -> np.ndarray:
     """Memory force at the end of the coming step without the newest-velocity term (world axes) [N, N m]."""
     n_h = u_now.shape[0]
+    out = np.zeros(n_h)
     if r.kind == RadiationKind.STATE_SPACE:
-        zz = r.decay * z + r.hold0 @ u_now.astype(np.complex128)
-        return -np.real(r.output @ zz)
+        matvec(r.history_state, z.view(np.float64), out)
+        matvec_add(r.history_input, u_now, out)
+        return out
     if r.kind == RadiationKind.CONVOLUTION:
         return _convolve(r, buf, pos, n_h)
-    return np.zeros(n_h)
+    return out
+
+
+@kernel
+def _advance_states(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray) -> None:
+    """z <- e^{lambda h} z + hold0 u_now + hold1 u_new, on the real and imaginary parts (``r.hold_real``)."""
+    n_h = u_now.shape[0]
+    both = np.empty(2 * n_h)
+    both[:n_h] = u_now
+    both[n_h:] = u_new
+    z *= r.decay
+    matvec_add(r.hold_real, both, z.view(np.float64))
 
 
 @kernel
@@ -160,7 +177,7 @@ def memory_advance(
 ) -> None:
     """Move the memory over a completed step (states, or the velocity ring buffer, one row per DOF)."""
     if r.kind == RadiationKind.STATE_SPACE:
-        z[:] = r.decay * z + r.hold0 @ u_now.astype(np.complex128) + r.hold1 @ u_new.astype(np.complex128)
+        _advance_states(r, z, u_now, u_new)
     elif r.kind == RadiationKind.CONVOLUTION:
         k = (pos[0] + 1) % r.depth
         buf[:, k] = u_new
@@ -237,17 +254,24 @@ def beeman_chunk(
     settings: StepSettings,
     state: LoopState,
     out: Store,
+    w: Workspace,
 ) -> tuple[int, int]:
     """Advance ``excitation.shape[0] - 1`` Beeman steps from global step ``step0`` (``state`` updated in place).
 
     ``excitation`` holds the excitation on the hydro DOFs at the chunk's times t_step0 ... (rows).
-    ``state.pto_now`` receives x, x_dot, f at the last state (for controllers); ``out`` records the run.
-    Returns (status, global step of the failure).
+    ``state.pto_now`` receives x, x_dot, f at the last state (for controllers); ``out`` records the run; ``w`` is
+    the kernels' workspace. The position is predicted once per step, so the corrector's evaluations share the
+    configuration's terms (mass matrix and its factor, static loads: :func:`configure`) and only redo the
+    velocity's (:func:`respond`). Returns (status, global step of the failure).
     """
     h, tol, max_iter, bounded, bound = settings
     q, v, acc, acc_prev, z, u_now, buf, pos, pto_now = state
     nv = v.shape[0]
     n_steps = excitation.shape[0] - 1
+    a1 = np.empty(nv)
+    known = np.empty(nv)
+    vc = np.empty(nv)
+    rad = np.empty(u_now.shape[0])
     for k in range(n_steps):
         n1 = step0 + k + 1
         hist = memory_history(r, z, u_now, buf, pos[0])
@@ -258,19 +282,27 @@ def beeman_chunk(
             return LoopStatus.NOT_FINITE, n1
         if _out_of_bounds(q1, bounded, bound):
             return LoopStatus.OUT_OF_BOUNDS, n1
-        known = v + h / 6.0 * (5.0 * acc - acc_prev)
-        vc = v + h / 2.0 * (3.0 * acc - acc_prev)
-        a1, u1, x1, xd1, f1, _ = accelerations(p, q1, vc, base, r.newest, command)
+        if not configure(p, q1, base, w):
+            return LoopStatus.NOT_FINITE, n1
+        for c in range(nv):
+            known[c] = v[c] + h / 6.0 * (5.0 * acc[c] - acc_prev[c])
+            vc[c] = v[c] + h / 2.0 * (3.0 * acc[c] - acc_prev[c])
+        respond(p, vc, r.newest, command, w)
+        a1[:] = w.acc
         count = 1
         converged = False
         previous = np.inf
         for _ in range(max_iter):
-            vc = known + h / 3.0 * a1
-            a_new, u1, x1, xd1, f1, _ = accelerations(p, q1, vc, base, r.newest, command)
+            for c in range(nv):
+                vc[c] = known[c] + h / 3.0 * a1[c]
+            respond(p, vc, r.newest, command, w)
             count += 1
-            change = np.max(np.abs(a_new - a1))
-            scale = np.max(np.abs(a_new))
-            a1 = a_new
+            change = 0.0
+            scale = 0.0
+            for c in range(nv):
+                change = max(change, abs(w.acc[c] - a1[c]))
+                scale = max(scale, abs(w.acc[c]))
+                a1[c] = w.acc[c]
             if change <= tol * scale + ACCELERATION_FLOOR:
                 converged = True
                 break
@@ -280,23 +312,25 @@ def beeman_chunk(
         if not converged:
             # Stiff step (h |dA/dv| / 3 > 1, where Beeman itself is unstable): the A-stable implicit trapezoidal
             # step q1 = q + h/2 (v + v1), v1 = v + h/2 (a + a(q1, v1)), by Newton with a finite-difference Jacobian.
-            vc = v + h * acc
+            vc[:] = v + h * acc
             for _ in range(max_iter):
                 q1 = integrate_configuration(p, q, 0.5 * h * (v + vc))
-                a_v = accelerations(p, q1, vc, base, r.newest, command)[0]
+                configure(p, q1, base, w)
+                respond(p, vc, r.newest, command, w)
+                a_v = w.acc.copy()
                 residual = vc - v - 0.5 * h * (acc + a_v)
                 jac = np.eye(nv)
                 for c in range(nv):
                     eps = 1e-7 * (1.0 + abs(vc[c]))
                     vp = vc.copy()
                     vp[c] += eps
-                    qp = integrate_configuration(p, q, 0.5 * h * (v + vp))
-                    a_p = accelerations(p, qp, vp, base, r.newest, command)[0]
-                    jac[:, c] -= 0.5 * h * (a_p - a_v) / eps
+                    configure(p, integrate_configuration(p, q, 0.5 * h * (v + vp)), base, w)
+                    respond(p, vp, r.newest, command, w)
+                    jac[:, c] -= 0.5 * h * (w.acc - a_v) / eps
                 count += nv + 1
                 out.evaluations[2] += 1
                 delta = np.linalg.solve(jac, -residual)
-                vc = vc + delta
+                vc += delta
                 if not np.all(np.isfinite(vc)):
                     return LoopStatus.NOT_FINITE, n1
                 if np.max(np.abs(delta)) <= tol * np.max(np.abs(vc)) + h / 3.0 * ACCELERATION_FLOOR:
@@ -309,13 +343,17 @@ def beeman_chunk(
                 return LoopStatus.NOT_FINITE, n1
             if _out_of_bounds(q1, bounded, bound):
                 return LoopStatus.OUT_OF_BOUNDS, n1
-            a1, u1, x1, xd1, f1, _mass = accelerations(p, q1, vc, base, r.newest, command)
+            configure(p, q1, base, w)
+            respond(p, vc, r.newest, command, w)
+            a1[:] = w.acc
             count += 1
         if not np.all(np.isfinite(vc)):
             return LoopStatus.NOT_FINITE, n1
         out.evaluations[0] += count
         out.evaluations[1] = max(out.evaluations[1], count)
-        rad = hist + r.newest @ u1
+        u1, x1, xd1, f1 = w.u, w.stroke, w.xdot, w.f  # of the last evaluation, at (q1, vc)
+        matvec(r.newest, u1, rad)
+        rad += hist
         memory_advance(r, z, u_now, u1, buf, pos)
         u_now[:] = u1
         q[:] = q1
@@ -332,14 +370,28 @@ def beeman_chunk(
 
 
 @kernel
-def state_rates(p: Plant, r: RadiationArrays, q: np.ndarray, v: np.ndarray, z: np.ndarray, exc: np.ndarray, command):
-    """Rates (q_dot, v_dot, z_dot) of the state-space system, with the PTO data and the memory force."""
-    rad = -np.real(r.output @ z)
-    n_h = exc.shape[0]
-    a, u, x, xd, f, _mass = accelerations(p, q, v, exc + rad, np.zeros((n_h, n_h)), command)
+def state_rates(
+    p: Plant,
+    r: RadiationArrays,
+    q: np.ndarray,
+    v: np.ndarray,
+    z: np.ndarray,
+    exc: np.ndarray,
+    command: np.ndarray,
+    w: Workspace,
+):
+    """Rates (q_dot, v_dot, z_dot) of the state-space system, with the PTO data (x, x_dot, f) and the memory force
+    (``w``: the kernels' workspace)."""
+    rad = np.empty(exc.shape[0])
+    matvec(r.output_real, z.view(np.float64), rad)
+    if configure(p, q, exc + rad, w):
+        respond(p, v, np.zeros((exc.shape[0], exc.shape[0])), command, w)  # the memory is all in z
+    else:
+        w.acc[:] = np.nan
     qd = configuration_rate(p, q, v)
-    zd = r.poles * z + r.input @ u.astype(np.complex128)
-    return qd, a, zd, x, xd, f, rad
+    zd = r.poles * z
+    matvec_add(r.input_real, w.u, zd.view(np.float64))
+    return qd, w.acc.copy(), zd, w.stroke.copy(), w.xdot.copy(), w.f.copy(), rad
 
 
 @kernel
@@ -352,24 +404,29 @@ def rk4_chunk(
     settings: StepSettings,
     state: LoopState,
     out: Store,
+    w: Workspace,
 ) -> tuple[int, int]:
-    """Advance ``(excitation.shape[0] - 1) // 2`` RK4 steps; ``excitation`` rows are at half steps from t_step0."""
+    """Advance ``(excitation.shape[0] - 1) // 2`` RK4 steps; ``excitation`` rows are at half steps from t_step0.
+
+    The rates at the end of a step, evaluated for the record, are the first stage of the next step (same state,
+    time, command): four evaluations per step, five for a chunk's first."""
     h, bounded, bound = settings.h, settings.bounded, settings.angle_bound
     q, v, acc, z, pto_now = state.q, state.v, state.acc, state.z, state.pto_now
     n_steps = (excitation.shape[0] - 1) // 2
+    qd1, a1, zd1, _, _, _, _ = state_rates(p, r, q, v, z, excitation[0], command, w)
+    out.evaluations[0] += 1
+    out.evaluations[1] = max(out.evaluations[1], 5)
     for k in range(n_steps):
         n1 = step0 + k + 1
-        e0 = excitation[2 * k]
         em = excitation[2 * k + 1]
         e1 = excitation[2 * k + 2]
-        qd1, a1, zd1, _, _, _, _ = state_rates(p, r, q, v, z, e0, command)
         qd2, a2, zd2, _, _, _, _ = state_rates(
-            p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command
+            p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command, w
         )
         qd3, a3, zd3, _, _, _, _ = state_rates(
-            p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command
+            p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command, w
         )
-        qd4, a4, zd4, _, _, _, _ = state_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command)
+        qd4, a4, zd4, _, _, _, _ = state_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command, w)
         q1 = q + h / 6.0 * (qd1 + 2.0 * qd2 + 2.0 * qd3 + qd4)
         normalise_quaternions(p, q1)
         v1 = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
@@ -380,10 +437,9 @@ def rk4_chunk(
         q[:] = q1
         v[:] = v1
         z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
-        _, a_new, _, x1, xd1, f1, rad = state_rates(p, r, q, v, z, e1, command)
-        out.evaluations[0] += 5
-        out.evaluations[1] = 5
-        acc[:] = a_new
+        qd1, a1, zd1, x1, xd1, f1, rad = state_rates(p, r, q, v, z, e1, command, w)
+        out.evaluations[0] += 4
+        acc[:] = a1
         pto_now[0] = x1
         pto_now[1] = xd1
         pto_now[2] = f1

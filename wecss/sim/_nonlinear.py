@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import CompiledScene, Plant, RadiationArrays, accelerations
+from ..compiled import CompiledScene, Plant, RadiationArrays, accelerations, workspace
 from ..scene import SceneError
 from ._control import ControlLoop
 from ._guards import check_rk4, farthest_body, stiff_pto_hint, translation_bound
@@ -191,6 +191,7 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
         return np.concatenate([q, v, z.real, z.imag])
 
     bar = Progress(n, progress)
+    work = workspace(p)
     start = _time.perf_counter()
     excitation = _Excitation(compiled, 2 if rk4 else 1)  # (timed: it is part of the loop's work)
     done = 0
@@ -203,9 +204,9 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
             if not rk4 and np.any(command != held):
                 _shift_history(p, r, state, held, command)
         if rk4:
-            status, at = rk4_chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out)
+            status, at = rk4_chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out, work)
         else:
-            status, at = beeman_chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out)
+            status, at = beeman_chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out, work)
         if status != LoopStatus.OK:
             raise _diverged(LoopStatus(status), at, compiled, q, v)
         if calm and np.max(np.abs(v)) > CALM_VELOCITY_LIMIT:
@@ -257,13 +258,14 @@ def run_reference(compiled: CompiledScene, progress: bool) -> Record:
     p, r = compiled.plant, compiled.radiation
     nq, nv, nz = compiled.q0.size, p.twists.shape[0], r.poles.size
     command = np.zeros(p.pto_kind.size)
+    work = workspace(p)
 
     def parts(t: float, y: np.ndarray):
         """The RK4 kernel's rates at (t, y): qd, a, zd, x, xd, f, rad; and the excitation."""
         q, v = y[:nq], y[nq : nq + nv]
         z = y[nq + nv : nq + nv + nz] + 1j * y[nq + nv + nz :]
         exc = compiled.excitation_at(np.array([t]))[0]
-        return (*state_rates(p, r, q, v, z, exc, command), exc)
+        return (*state_rates(p, r, q, v, z, exc, command, work), exc)
 
     def rates(t: float, y: np.ndarray) -> np.ndarray:
         qd, a, zd, *_ = parts(t, y)
