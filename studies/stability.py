@@ -15,8 +15,20 @@ Steep seas: m4-111 in JONSWAP seas up to Hs 0.2 m (Tp 1.2 s) at the default step
 run either completes and its file holds only finite numbers, or it stops with ``SimulationDiverged`` (its message
 names the time and what diverged) and no file is written.
 
+Long runs: the default scene (m4-134, Beeman, state-space radiation, the fastest accurate setting) for
+``LONG_STEPS`` (10^6) steps. In calm water: the largest distance of the configuration from the static equilibrium
+and the largest energy (kinetic plus linearised potential, 1/2 v'M v + 1/2 dq'K dq with M and K of the linear
+model) over the run, at every 100th step. In the default sea: the energy per tenth of the run (bounded: no growth),
+the mean PTO power of the run's own running statistic (the final half) against the means of ``WINDOW_STEPS``
+(10^4)-step windows (their mean, spread and trend). The sea uses d_omega = 2 pi / (``RECORD_TP`` Tp): with the
+default 2 pi / duration a 10^6-step run has 17,896 wave components (their sum per chunk of steps dominates the
+cost); the record then repeats every 500 Tp (10^5 steps). The unmoored device drifts in waves (about 26 m in
+5,500 s), so the translation bound is lifted for the wave run.
+
     python studies/stability.py           # full: m4-111 and m4-134; writes docs/benchmarks.md
-    python studies/stability.py --quick   # m4-111, Beeman with state space, paper PTO, coarse bisection; temp folder
+    python studies/stability.py --long    # the long runs only; writes their part of the section
+    python studies/stability.py --quick   # m4-111, Beeman with state space, paper PTO, coarse bisection, 2 x 10^4-step
+                                          # long runs; temp folder
 """
 
 from __future__ import annotations
@@ -38,6 +50,10 @@ from wecss.scene import SceneError
 from wecss.sim import JIT, Scene, SimulationDiverged, default_scene_path, simulate
 
 SECTION = "## Numerical stability"
+LONG_SECTION = "### Long runs"
+LONG_STEPS = 10**6
+WINDOW_STEPS = 10**4
+RECORD_TP = 500.0  # repeat period of the long run's wave record [Tp]
 DURATION = 10.0  # [Tp]
 RAMP = 2.0  # [Tp]
 RMS_BAND = 0.25
@@ -142,6 +158,101 @@ def steep_sea(heights: list[float], radiation: str, out: Path) -> list[dict]:
     return rows
 
 
+def long_scene(steps: int, calm: bool) -> Scene:
+    """The default scene (Beeman, state space) for ``steps`` steps, in calm water or the default sea."""
+    base = Scene.from_toml(default_scene_path())
+    tp = float(base.sea.period or 1.2)
+    every = 100 if calm else 1
+    sea = (
+        dataclasses.replace(base.sea, kind="calm", duration=steps * base.dt, ramp=0.0)
+        if calm
+        else dataclasses.replace(base.sea, duration=steps * base.dt, d_omega=2 * math.pi / (RECORD_TP * tp))
+    )
+    return dataclasses.replace(
+        base,
+        sea=sea,
+        radiation=dataclasses.replace(base.radiation, method="state_space"),
+        solver=dataclasses.replace(base.solver, method="beeman", translation_bound=1e4),
+        outputs=dataclasses.replace(base.outputs, variables=("motion",) if calm else ("motion", "pto"), every=every),
+    )
+
+
+def _energy(ds, model, names: tuple[str, ...]) -> np.ndarray:  # type: ignore[no-untyped-def]
+    """1/2 v'M v + 1/2 dq'K dq [J] at the saved steps (M, K of the linear model about the equilibrium; ``names``
+    the model's generalised velocities, in its order)."""
+    saved = [*map(str, ds.dof_linear.values), *map(str, ds.dof_angular.values)]
+    order = [saved.index(n) for n in names]
+    q = np.concatenate([ds.displacement.values, ds.angle.values], axis=1)[:, order]
+    v = np.concatenate([ds.velocity.values, ds.angular_velocity.values], axis=1)[:, order]
+    dq = q - model.q0[None]
+    return 0.5 * np.einsum("ti,ij,tj->t", v, model.mass, v) + 0.5 * np.einsum("ti,ij,tj->t", dq, model.stiffness, dq)
+
+
+def long_runs(steps: int, window_steps: int) -> dict:
+    """Calm-water drift and energy, and the wave run's energy per tenth and windowed mean power (a dict)."""
+    from wecss.linear import linearize
+    from wecss.sim import compile_scene
+
+    out: dict = {"steps": steps, "window_steps": window_steps}
+    calm = compile_scene(long_scene(steps, calm=True))
+    model = linearize(calm)
+    ds = simulate(calm)
+    q = np.concatenate([ds.displacement.values, ds.angle.values], axis=1)
+    out["calm_drift"] = float(np.max(np.abs(q - model.q0[None])))
+    out["calm_energy"] = float(np.max(np.abs(_energy(ds, model, calm.device.model.velocity_names))))
+    out["calm_loop"] = float(ds.attrs["run_time_s"])
+    waves = compile_scene(long_scene(steps, calm=False))
+    ds = simulate(waves)
+    out["loop"] = float(ds.attrs["run_time_s"])
+    energy = _energy(ds, linearize(waves), waves.device.model.velocity_names)
+    ramp = round(waves.scene.sea.ramp_s / waves.dt)
+    tenths = np.array_split(energy[ramp:], 10)
+    out["energy_tenths"] = [float(np.max(t)) for t in tenths]
+    power = ds.pto_power.values.sum(axis=1)
+    n_windows = (power.size - ramp) // window_steps
+    windows = power[ramp : ramp + n_windows * window_steps].reshape(n_windows, window_steps).mean(axis=1)
+    out["windows"] = windows
+    out["long_mean"] = float(ds.mean_pto_power.values.sum())  # the kernel's running sums over the final half
+    out["record_mean"] = float(power[ramp:].mean())
+    out["trend"] = float(np.polyfit(np.arange(n_windows), windows, 1)[0] * n_windows)  # change over the run [W]
+    return out
+
+
+def long_report(r: dict) -> str:
+    """The long runs' part of the section."""
+    w = r["windows"]
+    mean, std = float(np.mean(w)), float(np.std(w, ddof=1))
+    tenths = r["energy_tenths"]
+    return "\n".join(
+        [
+            LONG_SECTION,
+            "",
+            f"The default scene (m4-134, Beeman, state-space radiation, dt = Tp/200) for {r['steps']:.0e} steps "
+            f"(measured {datetime.datetime.now(datetime.UTC).strftime('%Y-%m-%d')}; the machine may be shared: loop "
+            f"times are wall times). Wave record d_omega = 2 pi / ({RECORD_TP:g} Tp), see the study's docstring.",
+            "",
+            "| measure | value |",
+            "|---|---|",
+            f"| calm water: largest \\|q - q_eq\\| (every 100th step) | {r['calm_drift']:.2e} (m or rad) |",
+            f"| calm water: largest energy 1/2 v'Mv + 1/2 dq'K dq | {r['calm_energy']:.2e} J |",
+            f"| calm water: time loop | {r['calm_loop']:.0f} s |",
+            "| waves: largest energy per tenth of the run (after the ramp) | "
+            + ", ".join(f"{e:.3g}" for e in tenths)
+            + " J |",
+            f"| waves: last tenth / first tenth | {tenths[-1] / tenths[0]:.3f} |",
+            f"| waves: mean PTO power, the run's statistic (final half) | {r['long_mean'] * 1e3:.4f} mW |",
+            f"| waves: mean PTO power over the whole record after the ramp | {r['record_mean'] * 1e3:.4f} mW |",
+            f"| waves: {w.size} windows of {r['window_steps']:.0e} steps: mean +- std | "
+            f"{mean * 1e3:.4f} +- {std * 1e3:.4f} mW |",
+            f"| waves: (final-half statistic - window mean) / window std | {(r['long_mean'] - mean) / std:+.2f} |",
+            f"| waves: linear trend of the window means over the run | {r['trend'] * 1e3:+.4f} mW "
+            f"({r['trend'] / mean:+.2%}) |",
+            f"| waves: time loop | {r['loop']:.0f} s |",
+            "",
+        ]
+    )
+
+
 def report(rows: list[dict], steep: list[dict], iterations: int) -> str:
     """The Markdown section: the criterion, the table of largest stable steps, the steep-sea table."""
     when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d")
@@ -178,11 +289,36 @@ def report(rows: list[dict], steep: list[dict], iterations: int) -> str:
     return "\n".join(text)
 
 
+def _write_long(text: str) -> None:
+    """Put the long runs' part at the end of the stability section of docs/benchmarks.md (replacing an older one)."""
+    path = ROOT / "docs" / "benchmarks.md"
+    doc = path.read_text()
+    if LONG_SECTION in doc:
+        write_section(path, LONG_SECTION, text)
+        return
+    start = doc.index(SECTION)
+    end = doc.find("\n## ", start + len(SECTION))
+    section = doc[start : end if end >= 0 else len(doc)]
+    write_section(path, SECTION, section.rstrip() + "\n\n" + text)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="m4-111, Beeman + state space, paper PTO (CI smoke run)")
+    parser.add_argument("--long", action="store_true", help="only the long runs (10^6 steps; minutes)")
     parser.add_argument("--out", help="output folder (default: docs/benchmarks.md for a full run, temp for --quick)")
     args = parser.parse_args(argv)
+    steps, window = (2 * 10**4, 2 * 10**3) if args.quick else (LONG_STEPS, WINDOW_STEPS)
+    out = Path(args.out) if args.out else Path(tempfile.mkdtemp())
+    out.mkdir(parents=True, exist_ok=True)
+    if args.long:
+        text = long_report(long_runs(steps, window))
+        print(text, flush=True)
+        if args.quick or args.out:
+            (out / "stability_long.md").write_text(text)
+        else:
+            _write_long(text)
+        return 0
     if args.quick:
         devices, combos, ptos, iterations, heights = (
             ["m4-111"],
@@ -195,8 +331,6 @@ def main(argv: list[str] | None = None) -> int:
         devices = ["m4-111", "m4-134"]
         combos = [("beeman", "state_space"), ("rk4", "state_space"), ("beeman", "convolution")]
         ptos, iterations, heights = list(PTOS), 6, [0.05, 0.1, 0.15, 0.2]
-    out = Path(args.out) if args.out else Path(tempfile.mkdtemp())
-    out.mkdir(parents=True, exist_ok=True)
     rows = []
     for device in devices:
         for method, radiation in combos:
@@ -210,7 +344,7 @@ def main(argv: list[str] | None = None) -> int:
         print(steep[-len(heights) :], flush=True)
     if any(r["file"] not in ("finite", "none") for r in steep):
         print("a steep-sea run wrote non-finite values or a file after diverging", file=sys.stderr)
-    text = report(rows, steep, iterations)
+    text = report(rows, steep, iterations) + "\n" + long_report(long_runs(steps, window))
     if args.quick or args.out:
         (out / "stability.md").write_text(text)
         print(f"wrote {out / 'stability.md'}")

@@ -329,12 +329,17 @@ def added_mass_correction(
     Kramers-Kronig relation of the damping (Ogilvie 1964), which with a finite frequency range and a fitted tail
     is not exactly the database's. Without the correction the time-domain added mass is off by that constant.
     """
-    response = memory_response(arrays, omega, dt)
-    flat = added_mass.reshape(omega_data.size, -1)
-    data = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], -1).reshape(
-        response.shape
-    )
-    residual = data - added_mass_inf[None] - response.imag / omega[:, None, None]
     w = np.asarray(weights, dtype=float) / np.sum(weights)
-    correction = np.einsum("w,wij->ij", w, residual)
+    correction = np.zeros_like(added_mass_inf, dtype=float)
+    for start in range(0, omega.size, RESPONSE_BLOCK):  # in blocks: long runs have 10^4 frequencies and more
+        block = slice(start, start + RESPONSE_BLOCK)
+        response = memory_response(arrays, omega[block], dt)
+        data = interpolate_matrices(omega_data, added_mass, omega[block])
+        residual = data - added_mass_inf[None] - response.imag / omega[block, None, None]
+        correction += np.einsum("w,wij->ij", w[block], residual)
     return 0.5 * (correction + correction.T)
+
+
+RESPONSE_BLOCK: int = 256
+"""Frequencies per block in :func:`added_mass_correction` (the state-space response holds n_h x n_h x n_states
+complex values per frequency)."""

@@ -38,6 +38,7 @@ from ._parameters import Parameters
 SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm")
 SOLVER_METHODS = ("beeman", "rk4", "reference", "linear", "frequency")
 LINEAR_HOLDS = ("foh", "zoh")
+ADDED_MASS_TREATMENTS = ("implicit", "explicit")
 RADIATION_METHODS = ("convolution", "state_space", "none")
 OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses", "loads")
 DEFAULT_OUTPUTS = ("motion", "pto", "excitation", "elevation", "poses")
@@ -47,8 +48,9 @@ MAX_STEPS: float = 1e9
 """Most steps a scene may ask for."""
 
 BYTES_PER_SAVED_STEP: int = 2000
-"""Estimate of the memory one saved step takes: 1.8 GB were measured for 10^6 saved steps of m4-134 (the
-integrator's store and the Dataset)."""
+"""Upper estimate of the memory one saved step takes: m4-134 with the default outputs took 1.0 kB per saved step
+(1.28 GB peak for 10^6 saved steps, 0.26 GB of it the interpreter and the compiled scene; the Dataset's variables
+are views of the loop's arrays); the radiation and loads groups take more."""
 
 MAX_SAVED_BYTES: float = 8e9
 """Most memory the saved time series of a scene may take (estimated; this machine class has 24 GiB)."""
@@ -282,6 +284,13 @@ class Solver:
     hold : {"foh", "zoh"} or None
         "linear" only: the excitation taken linear in time over a step (first-order hold, second order; the
         default) or held (zero-order hold, first order).
+    added_mass : {"implicit", "explicit"}
+        "beeman" only. "implicit" (default): the infinite-frequency added mass in the mass matrix, B' (M + A_inf) B,
+        no iteration for it. "explicit": the M4 paper's own method (its section 5.2), a replication option: the
+        rigid mass alone on the left, the added-mass force of the last accelerations on the right, iterated with
+        the corrector until the accelerations change by less than ``corrector_tol`` (the paper: 0.01), with no
+        implicit fallback. Slower, and it converges only where the added mass is smaller than the rigid mass in
+        every mode (a run refuses to start otherwise; see ``wecss.sim`` docs, "the paper's method").
     """
 
     method: str = "beeman"
@@ -292,9 +301,16 @@ class Solver:
     translation_bound: float | None = None
     reference_rtol: float = 1e-10
     hold: str | None = None
+    added_mass: str = "implicit"
 
     def __post_init__(self) -> None:
         _choice("solver.method", self.method, SOLVER_METHODS)
+        _choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
+        if self.added_mass == "explicit" and self.method != "beeman":
+            raise SceneError(
+                f"solver.added_mass 'explicit' (the M4 paper's iterated added mass) needs solver.method 'beeman'; "
+                f"got method {self.method!r}"
+            )
         if self.hold is not None:
             _choice("solver.hold", self.hold, LINEAR_HOLDS)
             if self.method != "linear":

@@ -155,6 +155,10 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
     return notes
 
 
+POSE_BLOCK: int = 100_000
+"""Configurations per block when the notes evaluate the poses of a record."""
+
+
 def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
     """Notes on the saved configurations ``q`` (n_t, nq): motion amplitudes against the bodies' size and a drift
     of the horizontal mean position."""
@@ -162,10 +166,19 @@ def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
         return []
     names = list(compiled.device.model.body_names)
     sizes = _sizes(compiled)
-    position, rotation = poses(compiled.plant, np.ascontiguousarray(q))
     rest_pos, rest_rot = poses(compiled.plant, np.ascontiguousarray(compiled.q0[None]))
+    # poses in blocks of rows (a long record's poses would double its memory): largest rotation and vertical
+    # shift from the equilibrium, and the mean positions over the first and the last tenth of the record
+    tenth = max(1, q.shape[0] // 10)
+    angle = np.zeros(len(names))
+    shift = np.zeros(len(names))
+    for start in range(0, q.shape[0], POSE_BLOCK):
+        position, rotation = poses(compiled.plant, np.ascontiguousarray(q[start : start + POSE_BLOCK]))
+        angle = np.maximum(angle, np.linalg.norm(rotation - rest_rot, axis=-1).max(axis=0))
+        shift = np.maximum(shift, np.abs(position[..., 2] - rest_pos[..., 2]).max(axis=0))
+    head = poses(compiled.plant, np.ascontiguousarray(q[:tenth]))[0][:, :, :2].mean(axis=0)
+    tail = poses(compiled.plant, np.ascontiguousarray(q[-tenth:]))[0][:, :, :2].mean(axis=0)
     notes = []
-    angle = np.linalg.norm(rotation - rest_rot, axis=-1).max(axis=0)
     big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
     if big:
         notes.append(
@@ -173,7 +186,6 @@ def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
             "linear hydrodynamics lose accuracy"
         )
     # vertical only: horizontal motion of an unmoored body is mostly drift, noted below
-    shift = np.abs(position[..., 2] - rest_pos[..., 2]).max(axis=0)
     big = [
         f"{n} {s:.3g} m (size {sizes[n]:.3g} m)"
         for n, s in zip(names, shift, strict=True)
@@ -184,8 +196,7 @@ def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
             f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
             f"{', '.join(big)}; linear hydrodynamics lose accuracy"
         )
-    tenth = max(1, q.shape[0] // 10)
-    drift = np.linalg.norm(position[-tenth:, :, :2].mean(axis=0) - position[:tenth, :, :2].mean(axis=0), axis=-1)
+    drift = np.linalg.norm(tail - head, axis=-1)
     far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
     if far:
         notes.append(

@@ -60,7 +60,10 @@ class Store(NamedTuple):
     stroke^2, count, stroke per PTO), [corrector evaluations, largest per step, Newton steps] into
     ``evaluations``, and per PTO into ``limits`` (4, n_pto): the steps with the force at its limit, the episodes
     of it (steps where it starts), the steps with the stroke beyond its limit (the end stop engaged), the episodes
-    of that."""
+    of that. The saved arrays ``a``, ``x``, ``xd``, ``f``, ``rad`` and ``exc`` may have a single row instead of one
+    per saved step: a scratch row, overwritten, for what no output of the run reads. The columns of ``rad`` and
+    ``exc`` are the hydro DOFs in ``hydro_order`` (translations first: each kind is then a view, no copy, in the
+    result)."""
 
     every: int
     stats_start: int
@@ -77,6 +80,7 @@ class Store(NamedTuple):
     evaluations: np.ndarray
     limits: np.ndarray
     limit_last: np.ndarray
+    hydro_order: np.ndarray
 
 
 class StepSettings(NamedTuple):
@@ -212,12 +216,16 @@ def _record(
         j = out.save_index[0]
         out.q[j] = q
         out.v[j] = v
-        out.a[j] = a
-        out.x[j] = x
-        out.xd[j] = xd
-        out.f[j] = f
-        out.rad[j] = rad
-        out.exc[j] = exc
+        # the optional arrays have one row when no output reads them (see ``Store``)
+        out.a[min(j, out.a.shape[0] - 1)] = a
+        out.x[min(j, out.x.shape[0] - 1)] = x
+        out.xd[min(j, out.xd.shape[0] - 1)] = xd
+        out.f[min(j, out.f.shape[0] - 1)] = f
+        jr = min(j, out.rad.shape[0] - 1)
+        je = min(j, out.exc.shape[0] - 1)
+        for c in range(exc.shape[0]):  # the hydro DOFs in the store's order
+            out.rad[jr, c] = rad[out.hydro_order[c]]
+            out.exc[je, c] = exc[out.hydro_order[c]]
         out.save_index[0] = j + 1
     for k in range(x.shape[0]):
         saturated = abs(f[k] + p.pto_spring[k] * x[k]) >= p.pto_force_limit[k] * (1.0 - 1e-12)

@@ -17,10 +17,11 @@ import numpy as np
 from ..compiled import CompiledScene, Plant, RadiationArrays, accelerations, workspace
 from ..scene import SceneError
 from ._control import ControlLoop
+from ._explicit import MAX_ITERATION_FACTOR, beeman_explicit_chunk, iteration_factor, split_added_mass
 from ._guards import check_rk4, farthest_body, stiff_pto_hint, translation_bound
 from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
 from ._progress import Progress
-from ._result import Record, stats_start, window_statistics
+from ._result import Record, grouped_hydro_order, stats_start, window_statistics
 
 CHUNK_STEPS: int = 2000
 """Steps per kernel call (progress is reported between chunks)."""
@@ -112,7 +113,13 @@ def _diverged(
     reason = {
         LoopStatus.NOT_FINITE: "the state became non-finite",
         LoopStatus.OUT_OF_BOUNDS: f"a revolute joint angle passed the bound {compiled.scene.solver.angle_bound} rad",
-        LoopStatus.CORRECTOR_FAILED: "the Beeman corrector (fixed point and Newton) did not converge",
+        LoopStatus.CORRECTOR_FAILED: (
+            "the explicit added-mass iteration (solver.added_mass 'explicit') did not reach solver.corrector_tol in "
+            f"{compiled.scene.solver.max_corrector_iterations} iterations (solver.max_corrector_iterations); "
+            "'implicit' needs no iteration"
+            if compiled.scene.solver.added_mass == "explicit"
+            else "the Beeman corrector (fixed point and Newton) did not converge"
+        ),
     }.get(status, f"status {status}")
     names = compiled.device.model.coordinate_names
     return SimulationDiverged(
@@ -126,6 +133,34 @@ def _diverged(
     )
 
 
+def _saved_rows(groups: tuple[str, ...], n_save: int) -> dict[str, int]:
+    """Rows of the store's optional arrays: ``n_save`` where an output group reads them, else one (a scratch row
+    the kernels overwrite, so that a run keeps only what its outputs need; configurations and velocities are always
+    kept, for the notes). Keys: ``a`` accelerations, ``pto`` PTO strokes, rates and forces, ``rad`` memory forces,
+    ``exc`` excitation."""
+    needs = {
+        "a": ("motion", "loads"),
+        "pto": ("pto", "loads"),
+        "rad": ("radiation", "loads"),
+        "exc": ("excitation", "loads"),
+    }
+    return {key: n_save if n_save and any(g in groups for g in wanted) else 1 for key, wanted in needs.items()}
+
+
+def _explicit_added_mass(compiled: CompiledScene) -> tuple[Plant, np.ndarray, float]:
+    """The rigid plant, the added mass and the iteration's spectral radius at the equilibrium for
+    ``solver.added_mass = "explicit"`` (see ``_explicit``); refuses a scene where the iteration cannot converge."""
+    factor = iteration_factor(compiled.plant, compiled.q0)
+    if factor > MAX_ITERATION_FACTOR:
+        raise SceneError(
+            f"solver.added_mass 'explicit': the added-mass iteration cannot converge on {compiled.device.name}: its "
+            f"spectral radius (B'MB)^-1 B'A_inf B at the equilibrium is {factor:.3g} (the added mass outweighs the "
+            f"rigid mass in some mode; at most {MAX_ITERATION_FACTOR} is accepted); use solver.added_mass 'implicit'"
+        )
+    rigid, added = split_added_mass(compiled.plant)
+    return rigid, added, factor
+
+
 def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     """Beeman or RK4 (the scene's ``solver.method``) over every step."""
     scene = compiled.scene
@@ -134,22 +169,25 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     every = scene.outputs.every if not scene.outputs.statistics_only else 0
     n_save = n // every + 1 if every else 0
     nq, nv, n_pto, n_h = compiled.q0.size, p.twists.shape[0], p.pto_kind.size, p.hydro_index.size
+    rows = _saved_rows(scene.outputs.variables, n_save)
+    hydro_order = grouped_hydro_order(compiled)
     out = Store(
         every=every,
         stats_start=stats_start(compiled),
         q=np.zeros((n_save, nq)),
         v=np.zeros((n_save, nv)),
-        a=np.zeros((n_save, nv)),
-        x=np.zeros((n_save, n_pto)),
-        xd=np.zeros((n_save, n_pto)),
-        f=np.zeros((n_save, n_pto)),
-        rad=np.zeros((n_save, n_h)),
-        exc=np.zeros((n_save, n_h)),
+        a=np.zeros((rows["a"], nv)),
+        x=np.zeros((rows["pto"], n_pto)),
+        xd=np.zeros((rows["pto"], n_pto)),
+        f=np.zeros((rows["pto"], n_pto)),
+        rad=np.zeros((rows["rad"], n_h)),
+        exc=np.zeros((rows["exc"], n_h)),
         save_index=np.zeros(1, dtype=np.int64),
         stats=np.zeros((4, n_pto)),  # sums over the window: absorbed power, stroke^2, count, stroke
         evaluations=np.zeros(3, dtype=np.int64),
         limits=np.zeros((4, n_pto), dtype=np.int64),
         limit_last=np.full((2, n_pto), -2, dtype=np.int64),
+        hydro_order=hydro_order,
     )
     q = compiled.q0.copy()
     v = np.zeros(nv)
@@ -175,11 +213,12 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
             (out.x, x0),
             (out.xd, xd0),
             (out.f, f0),
-            (out.exc, exc0),
+            (out.exc, exc0[hydro_order]),
         ):
             row[0] = value
         out.save_index[0] = 1
     rk4 = scene.solver.method == "rk4"
+    explicit = _explicit_added_mass(compiled) if scene.solver.added_mass == "explicit" else None
     bound, next_check, shift, body = translation_bound(compiled), CHUNK_STEPS, 0.0, ""
     if rk4:
         check_rk4(compiled)
@@ -205,6 +244,11 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
                 _shift_history(p, r, state, held, command)
         if rk4:
             status, at = rk4_chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out, work)
+        elif explicit is not None:
+            rigid, added, _ = explicit
+            status, at = beeman_explicit_chunk(
+                rigid, added, r, excitation.chunk(done, m), command, done, settings, state, out
+            )
         else:
             status, at = beeman_chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out, work)
         if status != LoopStatus.OK:
@@ -245,8 +289,12 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
             "max_evaluations_per_step": int(evaluations[1]),
             "newton_corrector_steps": int(evaluations[2]),
         }
+        if explicit is not None:
+            solver["added_mass"] = "explicit"
+            solver["added_mass_iteration_factor"] = explicit[2]
     record = Record(saved, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc, out.stats, run_time, solver)
     record.limits = out.limits
+    record.hydro_order = hydro_order
     return record
 
 

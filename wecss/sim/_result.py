@@ -36,8 +36,10 @@ class Record:
     ``time`` (n_save,) [s]; ``q`` configurations, ``v`` generalised velocities, ``a`` accelerations; PTO strokes
     ``x``, rates ``xd`` and forces ``f`` (n_save, n_pto); memory forces ``rad`` and excitation ``exc`` on the hydro
     DOFs; ``stats`` the sums over the statistics window (see :func:`window_statistics`); ``run_time`` [s] of the
-    run itself. ``solver`` describes the run in the result's attributes: at least ``solver`` (its name), and
-    whatever else the run measured (evaluations per step, its radiation model, ...).
+    run itself. The fixed-step runs keep ``a``, ``x``, ``xd``, ``f``, ``rad`` and ``exc`` only where an output group
+    reads them; otherwise these hold a single row. ``solver`` describes the run in the result's attributes: at
+    least ``solver`` (its name), and whatever else the run measured (evaluations per step, its radiation model,
+    ...).
     """
 
     time: np.ndarray
@@ -59,6 +61,8 @@ class Record:
     """A frequency-domain run's :class:`Spectral` record: its equilibrium and complex amplitudes (for the loads'
     amplitudes per frequency); None for the time-domain runs. (Typed Any: the runners build Records from dicts of
     arrays.)"""
+    hydro_order: np.ndarray | None = None
+    """The hydro DOFs of the columns of ``rad`` and ``exc``, as indices into the database's (None: its order)."""
 
 
 def limit_counts(stroke: np.ndarray, control: np.ndarray, limits: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
@@ -71,6 +75,25 @@ def limit_counts(stroke: np.ndarray, control: np.ndarray, limits: tuple[np.ndarr
         starts = active[0].astype(np.int64) + np.sum(active[1:] & ~active[:-1], axis=0)
         rows += [np.sum(active, axis=0), starts]
     return np.array(rows, dtype=np.int64).reshape(4, -1)
+
+
+def hydro_angular(compiled: CompiledScene) -> np.ndarray:
+    """Mask of the rotational hydro DOFs (roll, pitch, yaw) in the database's order."""
+    return np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in compiled.hydro.dofs], dtype=bool)
+
+
+def grouped_hydro_order(compiled: CompiledScene) -> np.ndarray:
+    """The hydro DOFs with the translations first and the rotations after (each in the database's order): the
+    column order in which the fixed-step runs store forces on them, so that each kind is one block of columns."""
+    angular = hydro_angular(compiled)
+    return np.concatenate([np.flatnonzero(~angular), np.flatnonzero(angular)]).astype(np.int64)
+
+
+def _hydro_columns(record: Record, values: np.ndarray) -> np.ndarray:
+    """``values`` (the record's ``rad`` or ``exc``) with the columns in the database's order."""
+    if record.hydro_order is None:
+        return values
+    return values[:, np.argsort(record.hydro_order)]
 
 
 def stats_start(compiled: CompiledScene) -> int:
@@ -124,9 +147,18 @@ def _split(  # one variable per kind: translations [m ...] under ``lin``, rotati
     dims: tuple[str, str],
 ) -> None:
     if (~mask).any():
-        ds[lin] = (("time", dims[0]), values[:, ~mask])
+        ds[lin] = (("time", dims[0]), values[:, _columns(~mask)])
     if mask.any():
-        ds[ang] = (("time", dims[1]), values[:, mask])
+        ds[ang] = (("time", dims[1]), values[:, _columns(mask)])
+
+
+def _columns(mask: np.ndarray) -> slice | np.ndarray:
+    """The columns ``mask`` selects: a slice where they are consecutive (the variable is then a view of the
+    record, no copy: a run of 10^6 saved steps holds its time series once), else their indices."""
+    index = np.flatnonzero(mask)
+    if index.size and index[-1] - index[0] + 1 == index.size:
+        return slice(int(index[0]), int(index[-1]) + 1)
+    return index
 
 
 def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
@@ -186,7 +218,9 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
     names, angular = dof_kinds(compiled)
     hydro_dofs = list(compiled.hydro.dofs)
-    hydro_angular = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in hydro_dofs])
+    angular_h = hydro_angular(compiled)
+    # the record's forces on the hydro DOFs may be stored translations first (``Record.hydro_order``)
+    stored_angular = angular_h if record.hydro_order is None else angular_h[record.hydro_order]
     pto_names = [p.name for p in compiled.device.ptos]
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     data: dict[str, Any] = {}
@@ -210,7 +244,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         _split(
             data,
             record.exc,
-            hydro_angular,
+            stored_angular,
             "excitation_force",
             "excitation_moment",
             ("hydro_dof_linear", "hydro_dof_angular"),
@@ -219,7 +253,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         _split(
             data,
             record.rad,
-            hydro_angular,
+            stored_angular,
             "radiation_force",
             "radiation_moment",
             ("hydro_dof_linear", "hydro_dof_angular"),
@@ -228,7 +262,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         _split(
             data,
             u,
-            hydro_angular,
+            angular_h,
             "hydro_velocity",
             "hydro_angular_velocity",
             ("hydro_dof_linear", "hydro_dof_angular"),
@@ -267,7 +301,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
         if any(dim in v[0] for v in data.values()):
             coords[dim] = values
-    for dim, mask in (("hydro_dof_linear", ~hydro_angular), ("hydro_dof_angular", hydro_angular)):
+    for dim, mask in (("hydro_dof_linear", ~angular_h), ("hydro_dof_angular", angular_h)):
         if any(dim in v[0] for v in data.values()):
             coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
     n_steps = compiled.n_steps
@@ -319,7 +353,12 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
 def _add_loads(data: dict[str, Any], coords: dict[str, Any], compiled: CompiledScene, record: Record) -> float:
     """The ``loads`` group (see ``wecss.sim._loads``); returns the closure residual."""
     loads = recover_loads(
-        compiled, record.q, record.v, record.a, (record.x, record.xd, record.f), record.rad + record.exc
+        compiled,
+        record.q,
+        record.v,
+        record.a,
+        (record.x, record.xd, record.f),
+        _hydro_columns(record, record.rad + record.exc),
     )
     _loads_variables(data, coords, compiled, loads, ("time",), "")
     if record.spectral is not None and record.spectral.omega.size:  # amplitudes per wave frequency

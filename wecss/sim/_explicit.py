@@ -1,0 +1,158 @@
+"""The M4 paper's own treatment of the added mass, as a replication option (``solver.added_mass = "explicit"``).
+
+wecss puts the infinite-frequency added mass in the mass matrix, M*_total = B' (M + A_inf) B (DESIGN.md), so a
+step needs no iteration for it. The paper (Lande-Sudall et al., Eq. 47 inserted into F* of Eq. 46, section 5.2 and
+its Fig. 3) keeps only the rigid mass on the left and the added-mass force on the right, evaluated with the
+accelerations of the previous iteration, and iterates the Beeman corrector until the accelerations change by less
+than 1 %. Derived from Eq. 47 in the MFM's Cartesian rows (B rows: centre-of-mass velocity, body angular velocity):
+
+    B' M (B a + Bdot v) = B' F - B' A_inf (B a_k + Bdot v)          a_{k+1} from a_k
+
+where a is the generalised acceleration and B a + Bdot v the Cartesian acceleration. At its fixed point this is
+exactly wecss's equation B' (M + A_inf) (B a + Bdot v) = B' F, so both converge to the same solution; the
+iteration itself converges only where the spectral radius of (B' M B)^-1 B' A_inf B is below one (the added mass
+smaller than the rigid mass in every mode), and slowly near one. :func:`iteration_factor` gives that radius at the
+equilibrium; a run refuses to start above :data:`MAX_ITERATION_FACTOR`.
+
+(The paper's Eq. 52 as printed is the velocity-Verlet form; its text, its reference (Beeman 1976) and its stated
+O(dt^3) error are Beeman's scheme, which ``wecss.sim._integrators`` implements and this module reuses.)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..compiled import Plant, RadiationArrays, accelerations, integrate_configuration, kernel, kinematics
+from ._integrators import (
+    ACCELERATION_FLOOR,
+    LoopState,
+    LoopStatus,
+    StepSettings,
+    Store,
+    _out_of_bounds,
+    _passes_stroke_limit,
+    _record,
+    memory_advance,
+    memory_history,
+)
+
+MAX_ITERATION_FACTOR: float = 0.95
+"""Largest spectral radius of the added-mass iteration a run starts with: at 0.95 a 1 % tolerance takes about 90
+iterations per step; at 1 and above the iteration diverges."""
+
+
+def split_added_mass(p: Plant) -> tuple[Plant, np.ndarray]:
+    """The plant with the rigid mass alone on its active rows, and the added mass A_inf on them (m, m) [kg, kg m,
+    kg m^2] (the difference of the total and the rigid mass matrices)."""
+    rigid = np.zeros_like(p.total_mass)
+    for i, (m, inertia) in enumerate(zip(p.mass, p.inertia, strict=True)):
+        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = m * np.eye(3)
+        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = inertia
+    rows = np.ix_(p.active, p.active)
+    rigid_active = np.ascontiguousarray(rigid[rows])
+    return p._replace(active_mass=rigid_active), np.ascontiguousarray(p.active_mass - rigid_active)
+
+
+def iteration_factor(p: Plant, q: np.ndarray) -> float:
+    """Spectral radius of the explicit added-mass iteration at configuration ``q``: of (B' M B)^-1 B' A_inf B, with
+    the rigid mass M and the added mass A_inf on the plant's active rows [-]. Below one the iteration converges,
+    each iteration shrinking the error by about this factor."""
+    rigid, added = split_added_mass(p)
+    _rot, _pos, b, _bdot, _omega = kinematics(p, q, np.zeros(p.twists.shape[0]))
+    ba = b[p.active]
+    mass = ba.T @ rigid.active_mass @ ba
+    return float(np.max(np.abs(np.linalg.eigvals(np.linalg.solve(mass, ba.T @ added @ ba)))))
+
+
+@kernel
+def explicit_accelerations(
+    p: Plant,
+    added: np.ndarray,
+    q: np.ndarray,
+    v: np.ndarray,
+    hydro_force: np.ndarray,
+    newest: np.ndarray,
+    command: np.ndarray,
+    guess: np.ndarray,
+):
+    """Accelerations with the rigid mass on the left and the added-mass force of the accelerations ``guess`` on
+    the right (``p``: the rigid plant of :func:`split_added_mass`, ``added`` its A_inf); the other arguments and
+    the returns as ``wecss.compiled.accelerations``."""
+    a, u, x, xd, f, mass = accelerations(p, q, v, hydro_force, newest, command)
+    _rot, _pos, b, bdot, _omega = kinematics(p, q, v)
+    act = p.active
+    nv = v.shape[0]
+    ba = np.empty((act.shape[0], nv))
+    cartesian = bdot @ v  # B a + Bdot v on the active rows
+    acc = np.empty(act.shape[0])
+    for k in range(act.shape[0]):
+        ba[k] = b[act[k]]
+        acc[k] = cartesian[act[k]]
+    acc += ba @ guess
+    a = a - np.linalg.solve(0.5 * (mass + mass.T), ba.T @ (added @ acc))
+    return a, u, x, xd, f, mass
+
+
+@kernel
+def beeman_explicit_chunk(
+    p: Plant,
+    added: np.ndarray,
+    r: RadiationArrays,
+    excitation: np.ndarray,
+    command: np.ndarray,
+    step0: int,
+    settings: StepSettings,
+    state: LoopState,
+    out: Store,
+) -> tuple[int, int]:
+    """Beeman steps as ``beeman_chunk``, with the added mass explicit (see the module docstring): one fixed-point
+    iteration updates the corrector velocity and the added-mass force from the last accelerations, until their
+    change is below ``settings.tol`` of their size (the paper: 1 %). No implicit fallback: a step whose iteration
+    does not converge within ``settings.max_iterations`` reports CORRECTOR_FAILED."""
+    h, tol, max_iter, bounded, bound = settings
+    q, v, acc, acc_prev, z, u_now, buf, pos, pto_now = state
+    n_steps = excitation.shape[0] - 1
+    for k in range(n_steps):
+        n1 = step0 + k + 1
+        hist = memory_history(r, z, u_now, buf, pos[0])
+        base = excitation[k + 1] + hist
+        q1 = integrate_configuration(p, q, h * v + h * h / 6.0 * (4.0 * acc - acc_prev))
+        if not np.all(np.isfinite(q1)):
+            return LoopStatus.NOT_FINITE, n1
+        if _out_of_bounds(q1, bounded, bound):
+            return LoopStatus.OUT_OF_BOUNDS, n1
+        known = v + h / 6.0 * (5.0 * acc - acc_prev)
+        # first evaluation: the predicted velocity, and the added-mass force of the last step's accelerations
+        vc = v + h / 2.0 * (3.0 * acc - acc_prev)
+        a1, u1, x1, xd1, f1, _mass = explicit_accelerations(p, added, q1, vc, base, r.newest, command, acc)
+        converged = False
+        count = 1
+        for _ in range(max_iter):
+            vc = known + h / 3.0 * a1
+            a_new, u1, x1, xd1, f1, _mass = explicit_accelerations(p, added, q1, vc, base, r.newest, command, a1)
+            count += 1
+            change = np.max(np.abs(a_new - a1))
+            a1 = a_new
+            if not np.isfinite(change):
+                return LoopStatus.NOT_FINITE, n1
+            if change <= tol * np.max(np.abs(a_new)) + ACCELERATION_FLOOR:
+                converged = True
+                break
+        if not converged:
+            return LoopStatus.CORRECTOR_FAILED, n1
+        out.evaluations[0] += count
+        out.evaluations[1] = max(out.evaluations[1], count)
+        rad = hist + r.newest @ u1
+        memory_advance(r, z, u_now, u1, buf, pos)
+        u_now[:] = u1
+        q[:] = q1
+        v[:] = vc
+        acc_prev[:] = acc
+        acc[:] = a1
+        pto_now[0] = x1
+        pto_now[1] = xd1
+        pto_now[2] = f1
+        if _passes_stroke_limit(p, x1):
+            return LoopStatus.STROKE_LIMIT, n1
+        _record(out, n1, p, q, v, acc, x1, xd1, f1, rad, excitation[k + 1])
+    return LoopStatus.OK, step0 + n_steps
