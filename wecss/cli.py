@@ -111,8 +111,8 @@ def _summary(ds: Any) -> str:
     lines.append(f"{'PTO':<12}{'mean power [W]':>16}{'RMS angle [deg]':>18}")
     for name in power.pto.values:
         angle = ""
-        if rms is not None and name in rms[rms.dims[0]].values:
-            angle = f"{np.degrees(float(rms.sel({rms.dims[0]: name}))):18.3f}"
+        if rms is not None and np.isfinite(float(rms.sel(pto=name))):  # NaN for linear PTOs
+            angle = f"{np.degrees(float(rms.sel(pto=name))):18.3f}"
         lines.append(f"{name:<12}{float(power.sel(pto=name)):16.5g}{angle}")
     lines.append(f"{'total':<12}{float(power.sum()):16.5g}")
     if "wave_energy_flux" in ds.attrs:

@@ -146,7 +146,7 @@ def test_rk4_with_state_space_radiation_converges_at_fourth_order():
 def test_mirrored_floats_respond_identically(device, pairs):
     ds = simulate(scene(device, sea={"duration": 15.0}))
     for a, b in pairs:
-        left, right = ds.pto_angle.sel(rotary_pto=a).values, ds.pto_angle.sel(rotary_pto=b).values
+        left, right = ds.pto_angle.sel(pto=a).values, ds.pto_angle.sel(pto=b).values
         assert _rms(left - right) <= 1e-3 * _rms(left), (a, b)
 
 

@@ -1,8 +1,11 @@
 """The result Dataset of a run (DESIGN.md "Results"), built from the raw :class:`Record` every runner returns.
 
 Dimensions: ``time``; ``dof_linear`` / ``dof_angular`` (generalised coordinates, translations and rotations kept
-apart); ``rotary_pto`` / ``linear_pto`` and ``pto`` (all PTOs, for power); ``hydro_dof_linear`` /
-``hydro_dof_angular`` (forces and moments on the hydrodynamic DOFs); ``body`` and ``axis`` (poses).
+apart); ``pto`` (every PTO, in the device spec's order, with the coordinate ``pto_kind``: "rotary" or "linear");
+``hydro_dof_linear`` / ``hydro_dof_angular`` (forces and moments on the hydrodynamic DOFs, bodies in the device
+spec's order); ``body`` and ``axis`` (poses). Every per-PTO variable has the one ``pto`` dimension: a rotary PTO's
+stroke is ``pto_angle`` [rad], a linear one's ``pto_displacement`` [m], each NaN for the PTOs of the other kind
+(and absent when the device has none of that kind), so ``ds.pto_angle * ds.pto_power`` stays (time, pto).
 Only the groups the scene's outputs ask for are present; statistics over the final window are always there.
 """
 
@@ -123,6 +126,27 @@ def _split(  # one variable per kind: translations [m ...] under ``lin``, rotati
         ds[ang] = (("time", dims[1]), values[:, mask])
 
 
+def _by_kind(
+    ds: dict[str, Any], values: np.ndarray, rotary: np.ndarray, lin: str, ang: str, dims: tuple[str, ...]
+) -> None:
+    """One variable per kind on the one ``pto`` dimension: rotary PTOs' values [rad ...] under ``ang``, linear
+    ones' [m ...] under ``lin``, NaN for the PTOs of the other kind; a kind no PTO has gives no variable."""
+    for name, mask in ((ang, rotary), (lin, ~rotary)):
+        if mask.any():
+            ds[name] = (dims, np.where(mask, values, np.nan))
+
+
+def natural_hydro_order(compiled: CompiledScene) -> np.ndarray:
+    """Indices that put the hydro DOFs in the device spec's body order (the database may list its bodies
+    otherwise), each body's DOFs in the database's order."""
+    bodies = [b.hydro_body for b in compiled.device.model.bodies if b.hydro_body is not None]
+    dofs = list(compiled.hydro.dofs)
+    rank = {body: k for k, body in enumerate(bodies)}
+    return np.array(
+        sorted(range(len(dofs)), key=lambda i: (rank.get(split_dof(dofs[i])[0], len(rank)), i)), dtype=np.int64
+    )
+
+
 def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
     """Energy period, mean period and energy flux of the scene's sea state (for the capture width ratio)."""
     sea = compiled.scene.sea
@@ -179,7 +203,8 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     scene = compiled.scene
     groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
     names, angular = dof_kinds(compiled)
-    hydro_dofs = list(compiled.hydro.dofs)
+    order = natural_hydro_order(compiled)  # columns of the hydro-DOF records, bodies in the spec's order
+    hydro_dofs = [compiled.hydro.dofs[i] for i in order]
     hydro_angular = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in hydro_dofs])
     pto_names = [p.name for p in compiled.device.ptos]
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
@@ -195,15 +220,15 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         _split(data, record.v, angular, "velocity", "angular_velocity", ("dof_linear", "dof_angular"))
         _split(data, record.a, angular, "acceleration", "angular_acceleration", ("dof_linear", "dof_angular"))
     if "pto" in groups and pto_names:
-        _split(data, record.x, rotary, "pto_displacement", "pto_angle", ("linear_pto", "rotary_pto"))
-        _split(data, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("linear_pto", "rotary_pto"))
-        _split(data, record.f, rotary, "pto_force", "pto_torque", ("linear_pto", "rotary_pto"))
+        _by_kind(data, record.x, rotary, "pto_displacement", "pto_angle", ("time", "pto"))
+        _by_kind(data, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("time", "pto"))
+        _by_kind(data, record.f, rotary, "pto_force", "pto_torque", ("time", "pto"))
         # absorbed power: the device spring's force -k x is conservative and left out
         data["pto_power"] = (("time", "pto"), -(record.f + compiled.plant.pto_spring * record.x) * record.xd)
     if "excitation" in groups and n_t:
         _split(
             data,
-            record.exc,
+            record.exc[:, order],
             hydro_angular,
             "excitation_force",
             "excitation_moment",
@@ -212,7 +237,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     if "radiation" in groups and n_t:
         _split(
             data,
-            record.rad,
+            record.rad[:, order],
             hydro_angular,
             "radiation_force",
             "radiation_moment",
@@ -221,7 +246,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         u = np.array([hydro_velocity(compiled.plant, qq, vv) for qq, vv in zip(record.q, record.v, strict=True)])
         _split(
             data,
-            u,
+            u[:, order],
             hydro_angular,
             "hydro_velocity",
             "hydro_angular_velocity",
@@ -249,15 +274,9 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
             data["stroke_limit_episodes"] = (("pto",), record.limits[3])
         mean = record.stats[3] / count
         rms = np.sqrt(np.maximum(record.stats[1] / count - mean**2, 0.0))  # about the window's mean, as the metric
-        if rotary.any():
-            data["rms_pto_angle"] = (("rotary_pto",), rms[rotary])
-        if (~rotary).any():
-            data["rms_pto_displacement"] = (("linear_pto",), rms[~rotary])
+        _by_kind(data, rms, rotary, "rms_pto_displacement", "rms_pto_angle", ("pto",))
         coords["pto"] = pto_names
-        if rotary.any():
-            coords["rotary_pto"] = [n for n, r in zip(pto_names, rotary, strict=True) if r]
-        if (~rotary).any():
-            coords["linear_pto"] = [n for n, r in zip(pto_names, rotary, strict=True) if not r]
+        coords["pto_kind"] = ("pto", ["rotary" if r else "linear" for r in rotary])
     for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
         if any(dim in v[0] for v in data.values()):
             coords[dim] = values
