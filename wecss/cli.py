@@ -134,7 +134,14 @@ def _summary(ds: Any) -> str:
 
 
 def _run(
-    scene_path: str | None, output: str | None, png: str | None, quiet: bool, overrides: Sequence[str] = ()
+    scene_path: str | None,
+    output: str | None,
+    png: str | None,
+    quiet: bool,
+    overrides: Sequence[str] = (),
+    *,
+    compress: int = 0,
+    float32: bool = False,
 ) -> int:
     from .results import plot_timeseries, save
     from .sim import Scene, default_scene_path, simulate
@@ -148,7 +155,7 @@ def _run(
     if not quiet:
         print(f"scene {path}", file=sys.stderr)
     ds = simulate(scene, progress=not quiet)
-    save(ds, out)
+    save(ds, out, compress=compress, float32=float32)
     if "time" in ds.dims:
         import matplotlib.pyplot as plt
 
@@ -239,6 +246,19 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--png", help="summary plot (.png); default: next to the result")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     run.add_argument(
+        "--compress",
+        type=int,
+        default=0,
+        choices=range(10),
+        metavar="LEVEL",
+        help="zlib level of the result file, 0 (none, default) to 9 (smallest); lossless",
+    )
+    run.add_argument(
+        "--float32",
+        action="store_true",
+        help="store the result's variables in single precision (half the size; relative error 6e-8)",
+    )
+    run.add_argument(
         "--set",
         action="append",
         default=[],
@@ -277,7 +297,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "info":
             return _info(args.target)
         if args.command == "run":
-            return _run(args.scene, args.output, args.png, args.quiet, args.set)
+            return _run(
+                args.scene, args.output, args.png, args.quiet, args.set, compress=args.compress, float32=args.float32
+            )
         if args.command == "sweep":
             return _sweep(args)
         if args.command == "plot":
