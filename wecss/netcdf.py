@@ -65,8 +65,9 @@ more than zlib saves on a few hundred values."""
 
 def storage_encoding(ds: xr.Dataset, *, compress: int | bool = 0, float32: bool = False) -> dict[str, dict]:
     """The netCDF encoding of every data variable of ``ds`` for a zlib level ``compress`` (0-9; True means 6; on
-    variables of at least :data:`COMPRESS_MIN_SIZE` values) and, with ``float32``, single-precision storage of the floating-point data variables (coordinates such as
-    time keep their precision; values come back within float32 rounding, a relative 6e-8).
+    variables of at least :data:`COMPRESS_MIN_SIZE` values) and, with ``float32``, single-precision storage of the
+    floating-point data variables (coordinates such as time keep their precision; values come back within float32
+    rounding, a relative 6e-8).
 
     Raises
     ------
