@@ -115,6 +115,32 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "force_limit_episodes": {"long_name": "times the controller's force reached the PTO's force limit", "units": "1"},
     "stroke_limit_time": {"long_name": "time the PTO stroke was beyond its limit (end stop engaged)", "units": "s"},
     "stroke_limit_episodes": {"long_name": "times the PTO stroke passed its limit (end stop engaged)", "units": "1"},
+    # frequency-domain steady state (wecss.linear.steady_state)
+    "hydro_dof": {"long_name": "degree of freedom of the hydrodynamic database (body__Dof)"},
+    "displacement_amplitude": {
+        "long_name": "complex amplitude of the translational generalised coordinate, Re[X exp(+i omega t)]",
+        "units": "m",
+    },
+    "angle_amplitude": {
+        "long_name": "complex amplitude of the rotational generalised coordinate, Re[X exp(+i omega t)]",
+        "units": "rad",
+    },
+    "pto_angle_amplitude": {
+        "long_name": "complex amplitude of the rotary PTO stroke, Re[X exp(+i omega t)] (NaN for linear PTOs)",
+        "units": "rad",
+    },
+    "pto_displacement_amplitude": {
+        "long_name": "complex amplitude of the linear PTO stroke, Re[X exp(+i omega t)] (NaN for rotary PTOs)",
+        "units": "m",
+    },
+    "excitation_amplitude": {
+        "long_name": "complex amplitude of the wave excitation on the hydrodynamic DOF, Re[X exp(+i omega t)]",
+        "units": "N (translations), N m (rotations)",
+    },
+    "wave_amplitude": {
+        "long_name": "complex amplitude of the undisturbed wave elevation at the origin, Re[X exp(+i omega t)]",
+        "units": "m",
+    },
     "excitation_force": {"long_name": "wave excitation force, world axes", "units": "N"},
     "excitation_moment": {"long_name": "wave excitation moment about the centre of mass, world axes", "units": "N m"},
     "radiation_force": {"long_name": "radiation memory force (without the A_inf part), world axes", "units": "N"},

@@ -2,6 +2,7 @@
 states, and the exact frequency response from A(omega) and B(omega)), its exact discretisation and runs in modal
 coordinates, the frequency-domain steady state and the modal table."""
 
+from ._frequency import response_amplitudes as response_amplitudes
 from ._frequency import steady_state as steady_state
 from ._modal_recursion import ModalForm as ModalForm
 from ._modal_recursion import ModalSteps as ModalSteps

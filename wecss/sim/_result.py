@@ -87,20 +87,9 @@ def window_statistics(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f:
 
 
 def dof_kinds(compiled: CompiledScene) -> tuple[list[str], np.ndarray]:
-    """Velocity names and a mask of the angular ones (by joint kind: revolute joints and the rotations of planar
-    and free bases are angular)."""
+    """Velocity names and a mask of the angular ones (``Multibody.angular_velocities``)."""
     model = compiled.device.model
-    angular: list[bool] = []
-    for joint in model.ordered_joints:
-        if joint.kind == "revolute":
-            angular.append(True)
-        elif joint.kind == "planar":
-            angular += [False, False, True]
-        elif joint.kind == "free":
-            angular += [False] * 3 + [True] * 3
-        else:
-            angular += [False] * joint.nv
-    return list(model.velocity_names), np.array(angular, dtype=bool)
+    return list(model.velocity_names), np.array(model.angular_velocities, dtype=bool)
 
 
 def _tangent(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
