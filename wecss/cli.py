@@ -143,7 +143,7 @@ def _run(
     compress: int = 0,
     float32: bool = False,
 ) -> int:
-    from .results import plot_timeseries, save
+    from .results import plot_summary, save
     from .sim import Scene, default_scene_path, simulate
     from .sweep import apply_overrides
 
@@ -156,13 +156,14 @@ def _run(
         print(f"scene {path}", file=sys.stderr)
     ds = simulate(scene, progress=not quiet)
     save(ds, out, compress=compress, float32=float32)
-    if "time" in ds.dims:
+    plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))
+    if plotted:  # the summary plot needs the elevation or the PTO series
         import matplotlib.pyplot as plt
 
-        fig = plot_timeseries(ds, picture)
+        fig = plot_summary(ds, picture)
         plt.close(fig)
     print(_summary(ds))
-    print(f"wrote {out}" + (f" and {picture}" if "time" in ds.dims else ""))
+    print(f"wrote {out}" + (f" and {picture}" if plotted else ""))
     return 0
 
 
@@ -219,14 +220,14 @@ def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) 
 
 
 def _plot(result: str, png: str | None) -> int:
-    from .results import open_result, plot_timeseries
+    from .results import open_result, plot_summary
 
     picture = Path(png) if png else Path(result).with_suffix(".png")
     check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
     ds = open_result(result)
     import matplotlib.pyplot as plt
 
-    plt.close(plot_timeseries(ds, picture))
+    plt.close(plot_summary(ds, picture))
     print(f"wrote {picture}")
     return 0
 
@@ -274,7 +275,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. tcp://host:8786")
     sweep.add_argument("--retry-failed", action="store_true", help="run the cases that failed before again")
     sweep.add_argument("-q", "--quiet", action="store_true", help="no progress line")
-    plot = sub.add_parser("plot", help="plot a result file's time series to PNG")
+    plot = sub.add_parser("plot", help="the summary plot of a result file (PNG)")
     plot.add_argument("result", help="result file (.nc)")
     plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")
     return parser
