@@ -123,9 +123,15 @@ def test_run_refuses_a_bad_compression_level_before_the_run(tmp_path, level, cap
 
 
 def test_save_refuses_a_bad_compression_level(tmp_path) -> None:
+    import numpy as np
     import xarray as xr
 
     from wecss.results import save
 
     with pytest.raises(ValueError, match="compress must be a zlib level 0"):
         save(xr.Dataset({"a": ("x", [1.0])}), tmp_path / "a.nc", compress=12)
+    from wecss.netcdf import storage_encoding
+
+    big = xr.Dataset({"a": ("x", np.zeros(2000))})
+    assert storage_encoding(big, compress=False) == {}  # the bools of earlier callers: off, and level 6
+    assert storage_encoding(big, compress=True) == {"a": {"zlib": True, "complevel": 6}}

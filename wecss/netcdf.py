@@ -64,7 +64,7 @@ more than zlib saves on a few hundred values."""
 
 
 def storage_encoding(ds: xr.Dataset, *, compress: int | bool = 0, float32: bool = False) -> dict[str, dict]:
-    """The netCDF encoding of every data variable of ``ds`` for a zlib level ``compress`` (0-9; True means 6; on
+    """The netCDF encoding of every data variable of ``ds`` for a zlib level ``compress`` (0-9; True: 6, False: 0; on
     variables of at least :data:`COMPRESS_MIN_SIZE` values) and, with ``float32``, single-precision storage of the
     floating-point data variables (coordinates such as time keep their precision; values come back within float32
     rounding, a relative 6e-8).
@@ -74,8 +74,8 @@ def storage_encoding(ds: xr.Dataset, *, compress: int | bool = 0, float32: bool 
     ValueError
         If ``compress`` is not a whole number from 0 to 9, or ``float32`` not a bool.
     """
-    level = 6 if compress is True else compress
-    if isinstance(level, bool) or not isinstance(level, int | np.integer) or level not in COMPRESSION_LEVELS:
+    level = {True: 6, False: 0}[compress] if isinstance(compress, bool) else compress
+    if not isinstance(level, int | np.integer) or level not in COMPRESSION_LEVELS:
         raise ValueError(f"compress must be a zlib level 0 (none) to 9 (smallest); got {compress!r}")
     if not isinstance(float32, bool | np.bool_):
         raise ValueError(f"float32 must be true or false; got {float32!r}")
