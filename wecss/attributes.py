@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Mapping
 
+import numpy as np
 import xarray as xr
 
 VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
@@ -170,6 +171,19 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     },
 }
 """Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
+
+
+def by_pto_kind(
+    values: np.ndarray, rotary: np.ndarray, names: tuple[str, str], dims: tuple[str, ...]
+) -> dict[str, tuple[tuple[str, ...], np.ndarray]]:
+    """A per-PTO quantity as Dataset variables on the one ``pto`` dimension (the last of ``dims``), one variable
+    per kind so units never mix: ``names`` = (rotary name [rad ...], linear name [m ...]), each NaN for the PTOs of
+    the other kind (``rotary`` a mask per PTO); a kind no PTO has gives no variable."""
+    out = {}
+    for name, mask in zip(names, (rotary, ~rotary), strict=True):
+        if mask.any():
+            out[name] = (dims, np.where(mask, values, np.nan))
+    return out
 
 
 def attrs_for(name: Hashable) -> dict[str, str]:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..attributes import apply_attrs
+from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import CompiledScene
 from ..waves import evaluate
 from ._model import LinearModel, linearize
@@ -82,9 +82,8 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
             data[name] = (("omega", dim), amplitudes[mask].T)
             coords[dim] = list(names[mask])
     if ptos:
-        for mask, name in ((rotary, "pto_angle_amplitude"), (~rotary, "pto_displacement_amplitude")):
-            if mask.any():
-                data[name] = (("omega", "pto"), np.where(mask[:, None], stroke, np.nan).T)
+        kinds = ("pto_angle_amplitude", "pto_displacement_amplitude")
+        data.update(by_pto_kind(stroke.T, rotary, kinds, ("omega", "pto")))
         power = 0.5 * model.pto_damping * np.sum((exc.omega * np.abs(stroke)) ** 2, axis=1)
         data["mean_pto_power"] = (("pto",), power)
         coords["pto"] = ptos
@@ -148,11 +147,6 @@ def _add_time_series(
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
     stroke_rate = rate @ model.pto_jacobian.T
-    for mask, (position, velocity) in (
-        (rotary, ("pto_angle", "pto_angular_velocity")),
-        (~rotary, ("pto_displacement", "pto_velocity")),
-    ):
-        if mask.any():
-            data[position] = (("time", "pto"), np.where(mask, stroke, np.nan))
-            data[velocity] = (("time", "pto"), np.where(mask, stroke_rate, np.nan))
+    data.update(by_pto_kind(stroke, rotary, ("pto_angle", "pto_displacement"), ("time", "pto")))
+    data.update(by_pto_kind(stroke_rate, rotary, ("pto_angular_velocity", "pto_velocity"), ("time", "pto")))
     coords["time"] = time

@@ -20,7 +20,7 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
-from ..attributes import apply_attrs
+from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import JIT, CompiledScene, hydro_velocity, poses
 from ..control import PowerBound, power_bound
 from ..hydro import split_dof
@@ -115,16 +115,6 @@ def _split(  # one variable per kind: translations [m ...] under ``lin``, rotati
         ds[ang] = (("time", dims[1]), values[:, mask])
 
 
-def _by_kind(
-    ds: dict[str, Any], values: np.ndarray, rotary: np.ndarray, lin: str, ang: str, dims: tuple[str, ...]
-) -> None:
-    """One variable per kind on the one ``pto`` dimension: rotary PTOs' values [rad ...] under ``ang``, linear
-    ones' [m ...] under ``lin``, NaN for the PTOs of the other kind; a kind no PTO has gives no variable."""
-    for name, mask in ((ang, rotary), (lin, ~rotary)):
-        if mask.any():
-            ds[name] = (dims, np.where(mask, values, np.nan))
-
-
 def natural_hydro_order(compiled: CompiledScene) -> np.ndarray:
     """Indices that put the hydro DOFs in the device spec's body order (the database may list its bodies
     otherwise), each body's DOFs in the database's order."""
@@ -209,9 +199,9 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         _split(data, record.v, angular, "velocity", "angular_velocity", ("dof_linear", "dof_angular"))
         _split(data, record.a, angular, "acceleration", "angular_acceleration", ("dof_linear", "dof_angular"))
     if "pto" in groups and pto_names:
-        _by_kind(data, record.x, rotary, "pto_displacement", "pto_angle", ("time", "pto"))
-        _by_kind(data, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("time", "pto"))
-        _by_kind(data, record.f, rotary, "pto_force", "pto_torque", ("time", "pto"))
+        data.update(by_pto_kind(record.x, rotary, ("pto_angle", "pto_displacement"), ("time", "pto")))
+        data.update(by_pto_kind(record.xd, rotary, ("pto_angular_velocity", "pto_velocity"), ("time", "pto")))
+        data.update(by_pto_kind(record.f, rotary, ("pto_torque", "pto_force"), ("time", "pto")))
         # absorbed power: the device spring's force -k x is conservative and left out
         data["pto_power"] = (("time", "pto"), -(record.f + compiled.plant.pto_spring * record.x) * record.xd)
     if "excitation" in groups and n_t:
@@ -263,7 +253,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
             data["stroke_limit_episodes"] = (("pto",), record.limits[3])
         mean = record.stats[3] / count
         rms = np.sqrt(np.maximum(record.stats[1] / count - mean**2, 0.0))  # about the window's mean, as the metric
-        _by_kind(data, rms, rotary, "rms_pto_displacement", "rms_pto_angle", ("pto",))
+        data.update(by_pto_kind(rms, rotary, ("rms_pto_angle", "rms_pto_displacement"), ("pto",)))
         coords["pto"] = pto_names
         coords["pto_kind"] = ("pto", ["rotary" if r else "linear" for r in rotary])
     for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
