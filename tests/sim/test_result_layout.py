@@ -109,3 +109,22 @@ def test_bodies_ptos_and_hydro_dofs_follow_the_device_spec():
             else ("excitation_force", "hydro_dof_linear")
         )
         np.testing.assert_allclose(ds[name].sel({dim: dof}).values, applied[:, k], rtol=1e-12, atol=1e-12)
+
+
+def test_results_of_the_earlier_layout_open_in_todays(mixed, tmp_path):
+    """A file written before the one pto dimension (per-PTO variables on rotary_pto / linear_pto) opens with
+    open_result in today's layout, equal to today's result."""
+    from wecss.netcdf import write_netcdf
+
+    rotary = mixed.pto_kind.values == "rotary"
+    old = mixed.drop_vars("pto_kind")
+    for name in list(old.data_vars):
+        if "pto" in old[name].dims and (name.startswith(("pto_angle", "pto_angular", "pto_torque", "rms_pto_angle"))):
+            old[name] = old[name].isel(pto=np.flatnonzero(rotary)).rename(pto="rotary_pto")
+        elif "pto" in old[name].dims and name.startswith(
+            ("pto_displacement", "pto_velocity", "pto_force", "rms_pto_d")
+        ):
+            old[name] = old[name].isel(pto=np.flatnonzero(~rotary)).rename(pto="linear_pto")
+    assert {"rotary_pto", "linear_pto"} <= set(old.dims)
+    again = open_result(write_netcdf(old, tmp_path / "old.nc"))
+    xr.testing.assert_identical(again[list(mixed.data_vars)], mixed)
