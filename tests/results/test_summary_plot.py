@@ -97,3 +97,20 @@ def test_a_regular_wave_marks_its_frequency_and_a_statistics_only_result_is_refu
 )
 def test_units_are_scaled_to_the_values(values, unit, expected):
     assert scaled_unit(np.array([values, -values / 2]), unit)[1] == expected
+
+
+def test_rotary_and_linear_strokes_get_axes_of_their_own(tmp_path):
+    """M4 111 with a vertical damper as well: the hinge angle in degrees on the left, the damper's stroke in mm on
+    a right-hand axis, both PTOs in one legend."""
+    from tests.sim.test_result_layout import DEVICES, STRUT
+
+    spec = tmp_path / "m4-111-strut.toml"
+    spec.write_text((DEVICES / "m4-111.toml").read_text().replace('"m4-111"', '"m4-111-strut"', 1) + STRUT)
+    ds = simulate(scene(str(spec), sea={"duration": 8.0}, outputs={"variables": ["pto", "elevation"]}))
+    fig = plot_summary(ds)
+    try:
+        labels = {ax.get_ylabel() for ax in fig.axes}
+        assert {"PTO angle [deg]", "PTO stroke [mm]"} <= labels and len(fig.axes) == 6
+        assert _legend_texts(fig.axes[1]) == ["pto_3", "strut"]
+    finally:
+        plt.close(fig)

@@ -105,9 +105,8 @@ def plot_summary(ds: xr.Dataset, path: str | Path | None = None) -> Any:
     _elevation_panel(axes[0], ds)
     _stroke_panel(axes[1], ds, styles)
     _power_panel(axes[2], ds, styles, means, power_unit)
-    for ax in axes[1:]:  # headroom for the legends above the lines
-        low, high = ax.get_ylim()
-        ax.set_ylim(low, high + 0.3 * (high - low))
+    low, high = axes[2].get_ylim()
+    axes[2].set_ylim(low, high + 0.3 * (high - low))  # headroom for the legend above the lines
     for k, ax in enumerate(axes):
         ax.axvspan(start, t[-1], color="0.85", zorder=0, label="statistics window" if k == 0 else None)
         ax.grid(alpha=0.3)
@@ -116,6 +115,7 @@ def plot_summary(ds: xr.Dataset, path: str | Path | None = None) -> Any:
     axes[2].set_xlabel("time [s]")
     _spectrum_panel(fig.add_subplot(grid[3, 0]), ds, start)
     _bars_panel(fig.add_subplot(grid[3, 1]), means, styles, power_unit)
+    # (a device with rotary and linear PTOs has one more axis: the linear strokes', to the right of the angles')
     fig.suptitle(sea_state_title(ds), fontsize=10, y=0.97)
     if path is not None:
         fig.savefig(path, dpi=110, bbox_inches="tight")
@@ -138,20 +138,25 @@ def _elevation_panel(ax: Any, ds: xr.Dataset) -> None:
 
 
 def _stroke_panel(ax: Any, ds: xr.Dataset, styles: dict[str, dict[str, Any]]) -> None:
-    labels = []
-    for name, unit, what in (("pto_angle", "rad", "angle"), ("pto_displacement", "m", "stroke")):
-        if name not in ds:
-            continue
+    """Rotary strokes in degrees on the left axis; linear strokes on the left too, or on a right-hand axis of
+    their own when the device has both kinds (units never share an axis)."""
+    kinds = [(n, u, w) for n, u, w in (("pto_angle", "rad", "angle"), ("pto_displacement", "m", "stroke")) if n in ds]
+    if not kinds:
+        ax.set_ylabel("no PTO strokes", fontsize=8)
+        return
+    handles = []
+    for k, (name, unit, what) in enumerate(kinds):
+        target = ax if k == 0 else ax.twinx()
         factor, shown = scaled_unit(ds[name].values, unit)
-        labels.append(f"{what} [{shown}]")
         for pto in ds.pto.values:
             values = ds[name].sel(pto=pto).values
             if np.all(np.isnan(values)):
                 continue  # a PTO of the other kind
-            ax.plot(ds.time, values * factor, lw=0.8, label=str(pto), **styles[str(pto)])
-    ax.set_ylabel("PTO " + ", ".join(labels) if labels else "no PTO strokes", fontsize=8)
-    if labels:
-        ax.legend(fontsize=7, ncol=min(4, len(styles)), loc="upper left")
+            handles += target.plot(ds.time, values * factor, lw=0.8, label=str(pto), **styles[str(pto)])
+        target.set_ylabel(f"PTO {what} [{shown}]", fontsize=8)
+        low, high = target.get_ylim()
+        target.set_ylim(low, high + 0.3 * (high - low))  # headroom for the legend
+    ax.legend(handles=handles, fontsize=7, ncol=min(4, len(styles)), loc="upper left")
 
 
 def _power_panel(
