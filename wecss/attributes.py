@@ -117,27 +117,6 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "stroke_limit_time": {"long_name": "time the PTO stroke was beyond its limit (end stop engaged)", "units": "s"},
     "stroke_limit_episodes": {"long_name": "times the PTO stroke passed its limit (end stop engaged)", "units": "1"},
     # frequency-domain steady state (wecss.linear.steady_state)
-    "hydro_dof": {"long_name": "degree of freedom of the hydrodynamic database (body__Dof)"},
-    "displacement_amplitude": {
-        "long_name": "complex amplitude of the translational generalised coordinate, Re[X exp(+i omega t)]",
-        "units": "m",
-    },
-    "angle_amplitude": {
-        "long_name": "complex amplitude of the rotational generalised coordinate, Re[X exp(+i omega t)]",
-        "units": "rad",
-    },
-    "pto_angle_amplitude": {
-        "long_name": "complex amplitude of the rotary PTO stroke, Re[X exp(+i omega t)] (NaN for linear PTOs)",
-        "units": "rad",
-    },
-    "pto_displacement_amplitude": {
-        "long_name": "complex amplitude of the linear PTO stroke, Re[X exp(+i omega t)] (NaN for rotary PTOs)",
-        "units": "m",
-    },
-    "excitation_amplitude": {
-        "long_name": "complex amplitude of the wave excitation on the hydrodynamic DOF, Re[X exp(+i omega t)]",
-        "units": "N (translations), N m (rotations)",
-    },
     "wave_amplitude": {
         "long_name": "complex amplitude of the undisturbed wave elevation at the origin, Re[X exp(+i omega t)]",
         "units": "m",
@@ -169,6 +148,25 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
         "long_name": "PTO moment (joint PTO torque) on the body at each end, world axes",
         "units": "N m",
     },
+    "hot_spot": {"long_name": "hot spot of a beam member (member.spot)"},
+    "section_axis": {"long_name": "member axes: x along the member from start to end, z up across it"},
+    "section_force": {
+        "long_name": "section force at the hot spot's station (N along x, shears Vy, Vz), member axes",
+        "units": "N",
+    },
+    "section_moment": {
+        "long_name": "section moment at the hot spot's station about the section centre (T, My, Mz), member axes",
+        "units": "N m",
+    },
+    "axial_stress": {"long_name": "axial stress N/A at the hot spot, times its SCF (tension positive)", "units": "Pa"},
+    "bending_stress": {"long_name": "bending stress My z/Iy - Mz y/Iz at the hot spot, times its SCF", "units": "Pa"},
+    "normal_stress": {"long_name": "normal stress (axial plus bending) at the hot spot, times its SCF", "units": "Pa"},
+    "shear_stress": {"long_name": "torsional shear stress T/W_t at the hot spot, times its SCF", "units": "Pa"},
+    "von_mises_stress": {"long_name": "von Mises stress at the hot spot", "units": "Pa"},
+    "signed_von_mises_stress": {
+        "long_name": "signed von Mises stress at the hot spot: the sign of the largest principal stress (Eq. 53)",
+        "units": "Pa",
+    },
 }
 """Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
 
@@ -186,9 +184,24 @@ def by_pto_kind(
     return out
 
 
+_DERIVED = {
+    "_amplitude": "complex amplitude per wave component, Re[X exp(+i omega t)], linearised about equilibrium, of the ",
+    "_equilibrium": "at equilibrium (no waves): ",
+}
+"""Suffixes of the loads group's frequency-domain variables and how their long names begin."""
+
+
 def attrs_for(name: Hashable) -> dict[str, str]:
-    """Return a copy of the attributes of variable ``name`` (empty when the name is unknown)."""
-    return dict(VARIABLE_ATTRS.get(str(name), {}))
+    """Return a copy of the attributes of variable ``name`` (empty when the name is unknown); a name ending in
+    ``_amplitude`` or ``_equilibrium`` takes its base variable's units."""
+    key = str(name)
+    for suffix, lead in _DERIVED.items():
+        base = key.removesuffix(suffix)
+        if base != key and base in VARIABLE_ATTRS:
+            out = dict(VARIABLE_ATTRS[base])
+            out["long_name"] = lead + out["long_name"]
+            return out
+    return dict(VARIABLE_ATTRS.get(key, {}))
 
 
 def apply_attrs(ds: xr.Dataset) -> xr.Dataset:

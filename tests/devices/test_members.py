@@ -83,6 +83,10 @@ def test_members_from_a_spec_and_clear_errors():
     off = {**spec["members"][0], "hot_spots": [{"name": "x", "at": 3.0}]}
     with pytest.raises(DeviceSpecError, match="off the member"):
         Device.from_spec({**spec, "members": [off]})
+    assert member.body_mass == "centre"  # the default: the body's own loads at its centre of mass
+    assert Device.from_spec({**spec, "members": [{**spec["members"][0], "body_mass": "along"}]}).members[0].body_mass
+    with pytest.raises(DeviceSpecError, match=r"body_mass 'spread'; accepted: \['centre', 'along'\]"):
+        Device.from_spec({**spec, "members": [{**spec["members"][0], "body_mass": "spread"}]})
     with pytest.raises(DeviceSpecError, match="body 'q'"):
         Device.from_spec({**spec, "members": [{**spec["members"][0], "body": "q"}]})
     with pytest.raises(ValueError, match="thickness"):

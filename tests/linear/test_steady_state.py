@@ -40,6 +40,14 @@ def test_amplitudes_need_no_time(periodic):
     assert np.iscomplexobj(ds.pto_angle_amplitude.values)
     assert list(ds.pto_kind.values) == ["rotary"]
     assert ds.pto_angle_amplitude.attrs["units"] == "rad" and ds.omega.attrs["units"] == "rad/s"
+    assert ds.excitation_force_amplitude.dims == ("omega", "hydro_dof_linear")
+    assert (
+        ds.excitation_force_amplitude.attrs["units"] == "N" and ds.excitation_moment_amplitude.attrs["units"] == "N m"
+    )
+    heave = list(periodic.excitation.dofs).index("float_1__Heave")
+    np.testing.assert_array_equal(
+        ds.excitation_force_amplitude.sel(hydro_dof_linear="float_1__Heave"), periodic.excitation.coefficients[heave]
+    )
     # the PTO stroke is the hinge angle of m4-111: its amplitude is the hinge coordinate's
     np.testing.assert_allclose(
         ds.pto_angle_amplitude.sel(pto="pto_3"), ds.angle_amplitude.sel(dof_angular="hinge_3__pitch"), rtol=1e-12

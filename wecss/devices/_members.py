@@ -28,7 +28,8 @@ _SECTION_KEYS = {
     "box": {"kind", "width", "height", "thickness"},
     "given": {"kind", "area", "iy", "iz", "wy", "wz", "wt"},
 }
-_MEMBER_KEYS = {"name", "body", "start", "end", "section", "hot_spots"}
+_MEMBER_KEYS = {"name", "body", "start", "end", "section", "hot_spots", "body_mass"}
+_BODY_MASS = ("centre", "along")
 _HOT_SPOT_KEYS = {"name", "at", "y", "z", "scf"}
 
 
@@ -146,6 +147,10 @@ class Member:
     end: np.ndarray
     section: Section
     hot_spots: tuple[HotSpot, ...]
+    body_mass: str = "centre"
+    """Where the body's own weight and inertia act for the member's free body: ``"centre"`` (one load at the body's
+    centre of mass) or ``"along"`` (the body's mass spread uniformly along the member: for a body that is this
+    beam); see :mod:`wecss.sim` (the ``loads`` group's section loads)."""
 
     @property
     def length(self) -> float:
@@ -199,6 +204,21 @@ class Member:
         moment = (np.cross(arm, f) + m).sum(axis=-2)
         return np.concatenate([force @ axes.T, moment @ axes.T], axis=-1)
 
+    def stress_components(self, spot: HotSpot, wrench: np.ndarray) -> dict[str, np.ndarray]:
+        """The stress components at a hot spot, linear in the section load (so complex amplitudes work too).
+
+        Returns
+        -------
+        dict of ndarray
+            ``axial`` N / A, ``bending`` My z / Iy - Mz y / Iz, ``normal`` their sum sigma and ``shear`` T / W_t
+            [Pa], SCF applied.
+        """
+        w = np.asarray(wrench)
+        s = self.section
+        axial = spot.scf * w[..., 0] / s.area
+        bending = spot.scf * (w[..., 4] * spot.z / s.iy - w[..., 5] * spot.y / s.iz)
+        return {"axial": axial, "bending": bending, "normal": axial + bending, "shear": spot.scf * w[..., 3] / s.wt}
+
     def stresses(self, spot: HotSpot, wrench: np.ndarray) -> dict[str, np.ndarray]:
         """Hot-spot stresses from the internal wrench at the spot's station.
 
@@ -207,11 +227,8 @@ class Member:
         dict of ndarray
             ``normal`` sigma, ``shear`` tau, ``von_mises`` and ``signed_von_mises`` [Pa], SCF applied.
         """
-        w = np.asarray(wrench, dtype=float)
-        s = self.section
-        sigma = w[..., 0] / s.area + w[..., 4] * spot.z / s.iy - w[..., 5] * spot.y / s.iz
-        tau = w[..., 3] / s.wt
-        sigma, tau = spot.scf * sigma, spot.scf * tau
+        parts = self.stress_components(spot, np.asarray(wrench, dtype=float))
+        sigma, tau = parts["normal"], parts["shear"]
         vm = np.sqrt(sigma**2 + 3 * tau**2)
         return {"normal": sigma, "shear": tau, "von_mises": vm, "signed_von_mises": np.where(sigma < 0, -vm, vm)}
 
@@ -228,7 +245,7 @@ def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list
     for k, entry in enumerate(entries):
         where = f"device {device!r}, members[{k}]"
         unknown = sorted(set(entry) - _MEMBER_KEYS)
-        missing = sorted(_MEMBER_KEYS - {"hot_spots"} - set(entry))
+        missing = sorted(_MEMBER_KEYS - {"hot_spots", "body_mass"} - set(entry))
         if unknown or missing:
             raise ValueError(
                 f"{where}: unknown keys {unknown}, missing keys {missing}; accepted: {sorted(_MEMBER_KEYS)}"
@@ -239,6 +256,9 @@ def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list
         if start.shape != (3,) or end.shape != (3,) or np.linalg.norm(end - start) == 0.0:
             raise ValueError(f"{where}: start and end must be two different points [x, y, z] in m")
         section = Section.from_spec(f"{where}.section", entry["section"])
+        body_mass = entry.get("body_mass", "centre")
+        if body_mass not in _BODY_MASS:
+            raise ValueError(f"{where}: body_mass {body_mass!r}; accepted: {list(_BODY_MASS)}")
         length = float(np.linalg.norm(end - start))
         spots = []
         for j, spot in enumerate(entry.get("hot_spots", [])):
@@ -260,7 +280,7 @@ def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list
             if not hs.scf > 0:
                 raise ValueError(f"{w}: scf must be positive, got {hs.scf}")
             spots.append(hs)
-        out.append(Member(str(entry["name"]), str(entry["body"]), start, end, section, tuple(spots)))
+        out.append(Member(str(entry["name"]), str(entry["body"]), start, end, section, tuple(spots), body_mass))
     names = [m.name for m in out]
     if len(set(names)) != len(names):
         raise ValueError(f"device {device!r}: member names repeat: {names}")

@@ -20,7 +20,8 @@ Spec layout (TOML; the same keys as a dict)::
     [[members]]                 # beam members for stress recovery (optional): name, body, start, end [m] (world,
     ...                         # reference configuration), section = {kind = "tube", outer_diameter, thickness} |
                                 # {kind = "box", width, height, thickness} | {kind = "given", area, iy, iz, wy, wz, wt},
-                                # hot_spots = [{name, at [m from start], y, z [m on the section], scf}]
+                                # hot_spots = [{name, at [m from start], y, z [m on the section], scf}],
+                                # body_mass = "centre" (default) | "along" (the body's mass spread along the member)
 """
 
 from __future__ import annotations

@@ -8,6 +8,7 @@ import xarray as xr
 
 from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import CompiledScene
+from ..hydro import split_dof
 from ..waves import evaluate
 from ._model import LinearModel, linearize
 
@@ -42,7 +43,8 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
         and ``time`` when given. Complex amplitudes, Re[X e^{+i omega t}] about the equilibrium:
         ``displacement_amplitude`` [m] and ``angle_amplitude`` [rad] of the generalised coordinates,
         ``pto_angle_amplitude`` [rad] and ``pto_displacement_amplitude`` [m] of the PTO strokes (NaN for PTOs of
-        the other kind, absent for a kind no PTO has), ``excitation_amplitude`` on the hydro DOFs [N, N m],
+        the other kind, absent for a kind no PTO has), ``excitation_force_amplitude`` [N] and
+        ``excitation_moment_amplitude`` [N m] on the hydro DOFs (``hydro_dof_linear`` / ``hydro_dof_angular``),
         ``wave_amplitude`` of the undisturbed elevation at the origin [m]; ``mean_pto_power`` [W], the exact mean
         absorbed power of each PTO's linear damping c, sum over components of c omega^2 |x_hat|^2 / 2.
         Attributes ``rho`` and ``g`` of the data.
@@ -69,11 +71,16 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     names = np.array(device.velocity_names)
     ptos = [p.name for p in compiled.device.ptos]
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
-    data: dict[str, tuple] = {
-        "excitation_amplitude": (("hydro_dof", "omega"), exc.coefficients),
-        "wave_amplitude": (("omega",), _wave_amplitudes(compiled, exc.omega)),
-    }
-    coords: dict[str, object] = {"omega": exc.omega, "hydro_dof": list(exc.dofs)}
+    data: dict[str, tuple] = {"wave_amplitude": (("omega",), _wave_amplitudes(compiled, exc.omega))}
+    coords: dict[str, object] = {"omega": exc.omega}
+    rotation = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in exc.dofs], dtype=bool)
+    for mask, name, dim in (
+        (~rotation, "excitation_force_amplitude", "hydro_dof_linear"),
+        (rotation, "excitation_moment_amplitude", "hydro_dof_angular"),
+    ):
+        if mask.any():
+            data[name] = (("omega", dim), exc.coefficients[mask].T)
+            coords[dim] = [d for d, m in zip(exc.dofs, mask, strict=True) if m]
     for mask, name, dim in (
         (~angular, "displacement_amplitude", "dof_linear"),
         (angular, "angle_amplitude", "dof_angular"),

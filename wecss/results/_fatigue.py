@@ -75,7 +75,7 @@ def rainflow_cycles(signal: np.ndarray) -> Cycles:
     return Cycles(arr[:, 0], arr[:, 1])
 
 
-def miner_damage(cycles: Cycles, curve: str | SNCurve = "dnv-c-air", scf: float = 1.0) -> float:
+def miner_damage(cycles: Cycles, curve: str | SNCurve = "paper-003-table-5", scf: float = 1.0) -> float:
     """Palmgren-Miner sum D = sum n_i / N(SCF Delta S_i) [-].
 
     Parameters
@@ -83,7 +83,7 @@ def miner_damage(cycles: Cycles, curve: str | SNCurve = "dnv-c-air", scf: float 
     cycles : Cycles
         Counted stress ranges [Pa] and counts.
     curve : str or SNCurve
-        A name in :data:`SN_CURVES` (default the paper's Table 5, DNV C in air) or a curve.
+        A name in :data:`SN_CURVES` (default ``"paper-003-table-5"``, the paper's Table 5) or a curve.
     scf : float
         Stress concentration factor applied to the ranges [-]; at least 1 in normal use, must be positive.
 
@@ -140,7 +140,7 @@ def life_years(damage: float, duration: float) -> float:
 
 
 def fatigue_life(
-    stress: np.ndarray, duration: float, curve: str | SNCurve = "dnv-c-air", scf: float = 1.0
+    stress: np.ndarray, duration: float, curve: str | SNCurve = "paper-003-table-5", scf: float = 1.0
 ) -> tuple[float, float]:
     """Miner damage of a stress record and its life in years.
 

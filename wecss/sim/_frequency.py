@@ -10,6 +10,7 @@ import numpy as np
 from ..compiled import CompiledScene
 from ..linear import linearize, response_amplitudes
 from ..waves import evaluate
+from ._load_amplitudes import Spectral
 from ._result import Record, window_statistics
 
 
@@ -70,6 +71,17 @@ def run_frequency_domain(compiled: CompiledScene) -> Record:
         {"solver": "frequency (exact steady state from A(omega) and B(omega); no ramp, no transient)"},
     )
     record.run_time = _time.perf_counter() - start
+    stroke_hat = model.pto_jacobian @ amplitudes
+    rest = model.pto_stroke
+    stiffness = p.pto_spring + p.pto_stiffness
+    record.spectral = Spectral(
+        omega,
+        {"q": compiled.q0, "v": np.zeros(nv), "a": np.zeros(nv), "x": rest, "xd": np.zeros_like(rest),
+         "f": -stiffness * rest, "h": np.zeros(n_h)},
+        {"q": amplitudes, "v": 1j * omega * amplitudes, "a": -(omega**2) * amplitudes, "x": stroke_hat,
+         "xd": 1j * omega * stroke_hat, "f": -(stiffness[:, None] + 1j * omega * p.pto_damping[:, None]) * stroke_hat,
+         "h": memory_hat + coefficients},
+    )  # fmt: skip
     limits = (p.pto_force_limit, p.pto_stroke_limit)
     if np.any(np.isfinite(limits[0])) or np.any(np.isfinite(limits[1])):  # declared: say what they would do
         control = pto_force + p.pto_spring * stroke

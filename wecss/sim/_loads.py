@@ -21,6 +21,7 @@ import numpy as np
 
 from ..compiled import CompiledScene, PtoKind, end_stop_force, hydrostatic_force, kinematics, world_jacobian
 from ..multibody import joint_reactions
+from ._sections import BodyHistory, section_loads
 
 
 @dataclass
@@ -40,6 +41,9 @@ class Loads:
         end on the ground.
     closure : float
         Largest residual of the generalised balance over the largest generalised applied load [-].
+    section : (n_t, n_spot, 6)
+        Section loads N, Vy, Vz [N], T, My, Mz [N m] at each hot spot of the device's members, member axes (see
+        ``wecss.sim._sections`` for the free body).
     """
 
     joint_force: np.ndarray
@@ -49,6 +53,7 @@ class Loads:
     pto_body_force: np.ndarray
     pto_body_moment: np.ndarray
     closure: float
+    section: np.ndarray
 
 
 def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, force: np.ndarray):
@@ -71,6 +76,9 @@ def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, fo
             axis = rot[child] @ joint.axis
             bodies[k] = (child, parent)
             points[k] = pos[child]
+            if joint.kind == "revolute":  # the torque acts at the hinge
+                assert joint.point is not None
+                points[k] = pos[child] + rot[child] @ (joint.point - model.bodies[child].center_of_mass)
             if joint.kind == "revolute":
                 end_moment[k, 0], end_moment[k, 1] = force[k] * axis, -force[k] * axis
             else:
@@ -93,7 +101,7 @@ def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, fo
                 continue
             cart[6 * i : 6 * i + 3] += end_force[k, e]
             cart[6 * i + 3 : 6 * i + 6] += end_moment[k, e] + np.cross(points[k, e] - pos[i], end_force[k, e])
-    return cart, end_force, end_moment
+    return cart, end_force, end_moment, bodies, points
 
 
 def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.ndarray, pto: tuple, hydro: np.ndarray):
@@ -122,18 +130,26 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = p.mass[i] * np.eye(3)
         rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = p.inertia[i]
     zj, zp = (n_t, n_j, 3), (n_t, n_pto, 2, 3)
-    out = Loads(np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zp), np.zeros(zp), 0.0)
+    out = Loads(
+        np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zp), np.zeros(zp), 0.0, np.zeros((n_t, 0, 6))
+    )
     child_of_joint = list(model.order)
+    members = compiled.device.members
+    carriers = sorted({model.body_names.index(m.body) for m in members if m.hot_spots})
+    gathered: dict[int, list[list[np.ndarray]]] = {i: [] for i in carriers}
+    gravity = np.array([0.0, 0.0, -compiled.hydro.g])
     worst, scale = 0.0, 0.0
     for t in range(n_t):
         qq, vv = np.ascontiguousarray(q[t]), np.ascontiguousarray(v[t])
         rot, pos, b, bdot, omega = kinematics(p, qq, vv)
-        world = hydrostatic_force(p, rot, pos)
-        world[p.hydro_index] += hydro[t]
+        own = hydrostatic_force(p, rot, pos)  # everything but the joints and the PTOs, world axes
+        own[p.hydro_index] += hydro[t]
         x, xd, f = pto[0][t], pto[1][t], pto[2][t]
         force = f + end_stop_force(p, x, xd) if n_pto else np.zeros(0)
-        cart, out.pto_body_force[t], out.pto_body_moment[t] = _pto_cartesian(compiled, rot, pos, force)
-        world += cart
+        cart, out.pto_body_force[t], out.pto_body_moment[t], pto_bodies, pto_points = _pto_cartesian(
+            compiled, rot, pos, force
+        )
+        world = own + cart
         applied = world.copy()  # world forces, body-axis moments (the convention of B and joint_reactions)
         for i in range(n):
             applied[6 * i + 3 : 6 * i + 6] = rot[i].T @ world[6 * i + 3 : 6 * i + 6]
@@ -146,8 +162,51 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         gyro = np.zeros(6 * n)
         for i in range(n):
             gyro[6 * i + 3 : 6 * i + 6] = np.cross(omega[i], p.inertia[i] @ omega[i])
-        balance = b.T @ (p.total_mass @ (b @ a[t] + bdot @ vv) + gyro - applied)
+        acc = b @ a[t] + bdot @ vv
+        inertia = p.total_mass @ acc + gyro
+        balance = b.T @ (inertia - applied)
         worst = max(worst, float(np.max(np.abs(balance), initial=0.0)))
         scale = max(scale, float(np.max(np.abs(world_jacobian(rot, b).T @ world), initial=0.0)))
+        for i in carriers:
+            loads = _body_point_loads(compiled, i, rot, pos, f_j, m_j, (out.pto_body_force[t], out.pto_body_moment[t]),
+                                      pto_bodies, pto_points)  # fmt: skip
+            r = rot[i]
+            own_force = r.T @ (own[6 * i : 6 * i + 3] - inertia[6 * i : 6 * i + 3])
+            own_moment = r.T @ own[6 * i + 3 : 6 * i + 6] - inertia[6 * i + 3 : 6 * i + 6]
+            loads.append((model.bodies[i].center_of_mass, own_force, own_moment))
+            pts, frc, mom = (np.array(c) for c in zip(*loads, strict=True))
+            gathered[i].append([pts, frc, mom, r.T @ gravity, r.T @ acc[6 * i : 6 * i + 3],
+                                acc[6 * i + 3 : 6 * i + 6], omega[i]])  # fmt: skip
     out.closure = worst / scale if scale > 0 else worst
+    if carriers and n_t:
+        histories = {i: BodyHistory(*(np.array(col) for col in zip(*gathered[i], strict=True))) for i in carriers}
+        index = {name: k for k, name in enumerate(model.body_names)}
+        out.section = section_loads(members, index, model.bodies, histories)
+    return out
+
+
+def _body_point_loads(compiled: CompiledScene, i: int, rot, pos, f_j, m_j, pto_loads, pto_bodies, pto_points):
+    """Point loads on body ``i`` from its joints and PTOs: a list of (point in body reference coordinates [m],
+    force, moment about the point [N, N m], body axes)."""
+    model = compiled.device.model
+    r, centre = rot[i], model.bodies[i].center_of_mass
+    to_body = lambda point: centre + r.T @ (point - pos[i])  # noqa: E731
+
+    def joint_point(c: int) -> np.ndarray:
+        joint = model.joints[model.joint_of[c]]
+        if joint.kind == "revolute":
+            assert joint.point is not None
+            return pos[c] + rot[c] @ (joint.point - model.bodies[c].center_of_mass)
+        return pos[c]
+
+    out = []
+    for k, c in enumerate(model.order):
+        if c == i:  # the body's own joint: the reaction from its parent
+            out.append((to_body(joint_point(c)), r.T @ f_j[k], r.T @ m_j[k]))
+        elif model.parent[c] == i:  # a child's joint: the child's reaction, reversed
+            out.append((to_body(joint_point(c)), -r.T @ f_j[k], -r.T @ m_j[k]))
+    for k in range(pto_bodies.shape[0]):
+        for e in range(2):
+            if pto_bodies[k, e] == i:
+                out.append((to_body(pto_points[k, e]), r.T @ pto_loads[0][k, e], r.T @ pto_loads[1][k, e]))
     return out

@@ -27,7 +27,9 @@ from ..hydro import split_dof
 from ..multibody import difference
 from ..waves import Ramp, energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, motion_notes, step_notes, wave_notes
-from ._loads import recover_loads
+from ._load_amplitudes import load_amplitudes
+from ._loads import Loads, recover_loads
+from ._sections import hot_spot_names, hot_spot_stresses
 
 
 @dataclass
@@ -56,6 +58,10 @@ class Record:
     limits: np.ndarray | None = None
     """Per PTO (4, n_pto): steps with the force at its limit, episodes of it, steps with the stroke beyond its
     limit, episodes of that (None: the run did not count them)."""
+    spectral: Any = None
+    """A frequency-domain run's :class:`Spectral` record: its equilibrium and complex amplitudes (for the loads'
+    amplitudes per frequency); None for the time-domain runs. (Typed Any: the runners build Records from dicts of
+    arrays.)"""
 
 
 def limit_counts(stroke: np.ndarray, control: np.ndarray, limits: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
@@ -313,17 +319,41 @@ def _add_loads(data: dict[str, Any], coords: dict[str, Any], compiled: CompiledS
     loads = recover_loads(
         compiled, record.q, record.v, record.a, (record.x, record.xd, record.f), record.rad + record.exc
     )
-    data["joint_reaction_force"] = (("time", "joint", "axis"), loads.joint_force)
-    data["joint_reaction_moment"] = (("time", "joint", "axis"), loads.joint_moment)
-    data["joint_reaction_force_local"] = (("time", "joint", "axis"), loads.joint_force_local)
-    data["joint_reaction_moment_local"] = (("time", "joint", "axis"), loads.joint_moment_local)
+    _loads_variables(data, coords, compiled, loads, ("time",), "")
+    if record.spectral is not None and record.spectral.omega.size:  # amplitudes per wave frequency
+        equilibrium, amplitudes = load_amplitudes(compiled, record.spectral)
+        _loads_variables(data, coords, compiled, equilibrium, ("time",), "_equilibrium")
+        for name, (dims, values) in list(data.items()):
+            if name.endswith("_equilibrium"):
+                data[name] = (dims[1:], values[0])
+        _loads_variables(data, coords, compiled, amplitudes, ("omega",), "_amplitude")
+        coords["omega"] = record.spectral.omega
+    return loads.closure
+
+
+def _loads_variables(
+    data: dict[str, Any], coords: dict[str, Any], compiled: CompiledScene, loads: Loads, lead: tuple[str], suffix: str
+) -> None:
+    """The ``loads`` group's variables from ``loads`` (leading dimension ``lead``), names ending in ``suffix``."""
+    joint, pto, spot = ("joint", "axis"), ("pto", "pto_end", "axis"), ("hot_spot", "section_axis")
+    data[f"joint_reaction_force{suffix}"] = ((*lead, *joint), loads.joint_force)
+    data[f"joint_reaction_moment{suffix}"] = ((*lead, *joint), loads.joint_moment)
+    data[f"joint_reaction_force_local{suffix}"] = ((*lead, *joint), loads.joint_force_local)
+    data[f"joint_reaction_moment_local{suffix}"] = ((*lead, *joint), loads.joint_moment_local)
     coords["joint"] = [j.name for j in compiled.device.model.ordered_joints]
     coords["axis"] = ["x", "y", "z"]
     if compiled.device.ptos:
-        data["pto_end_force"] = (("time", "pto", "pto_end", "axis"), loads.pto_body_force)
-        data["pto_end_moment"] = (("time", "pto", "pto_end", "axis"), loads.pto_body_moment)
+        data[f"pto_end_force{suffix}"] = ((*lead, *pto), loads.pto_body_force)
+        data[f"pto_end_moment{suffix}"] = ((*lead, *pto), loads.pto_body_moment)
         coords["pto_end"] = ["a", "b"]
-    return loads.closure
+    if loads.section.shape[1]:  # the device's members: section loads and stresses at their hot spots
+        members = compiled.device.members
+        coords["hot_spot"] = hot_spot_names(members)
+        coords["section_axis"] = ["x", "y", "z"]
+        data[f"section_force{suffix}"] = ((*lead, *spot), loads.section[..., :3])
+        data[f"section_moment{suffix}"] = ((*lead, *spot), loads.section[..., 3:])
+        for key, values in hot_spot_stresses(members, loads.section).items():
+            data[f"{key}_stress{suffix}"] = ((*lead, "hot_spot"), values)
 
 
 def power_bound_of(compiled: CompiledScene) -> PowerBound:
