@@ -21,6 +21,7 @@ import time
 import warnings
 from pathlib import Path
 
+from wecss.attributes import apply_attrs
 from wecss.hydro import DATA_DIR, HydroData
 from wecss.hydro.bem import BEMSpec, read_geometry, run_bem
 from wecss.netcdf import write_netcdf
@@ -67,7 +68,7 @@ def generate(name: str, output_dir: Path, *, quick: bool, n_jobs: int) -> Path:
             "generated_by": "studies/generate_hydro.py" + (" --quick" if quick else ""),
         },
     )
-    path = write_netcdf(dataset, output_dir / f"{name}.nc")
+    path = write_netcdf(apply_attrs(dataset), output_dir / f"{name}.nc")  # long names and units on disk
     path.chmod(0o644)  # write_netcdf's temporary file is private (0600); shipped data are readable by all
     start = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:

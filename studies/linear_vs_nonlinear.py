@@ -39,7 +39,7 @@ def run(device: str, height: float, duration: str) -> dict[str, float]:
     t = linear.time.values
     late = t >= t[-1] / 2
     a, b = nonlinear.pto_angle.values[late], linear.pto_angle.values[late]
-    exact = steady_state(compiled, t)["pto"][late]
+    exact = steady_state(compiled, t).pto_angle.values[late]
     rms = lambda x: float(np.sqrt(np.mean((x - x.mean(0)) ** 2)))  # noqa: E731
     fd_power = float(np.sum(np.mean(compiled.plant.pto_damping * (np.gradient(exact, t[late], axis=0)) ** 2, axis=0)))
     return {

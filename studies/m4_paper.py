@@ -157,7 +157,7 @@ def summary(results: dict[str, xr.Dataset]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for method in ("frequency", "beeman"):
         sel = js.sel({"solver.method": method})
-        rms_deg = np.degrees(sel.rms_pto_angle.mean("rotary_pto"))
+        rms_deg = np.degrees(sel.rms_pto_angle.mean("pto"))
         out[method] = {
             "theta_rms_deg_range": [float(rms_deg.min()), float(rms_deg.max())],
             "max_cwr_paper": {
@@ -256,7 +256,7 @@ def figures(folder: Path, results: dict[str, xr.Dataset], target: Path) -> list[
             f = freq[var] * scale
             n = nonl[var] * scale
             if var == "rms_pto_angle":
-                f, n = f.mean("rotary_pto"), n.mean("rotary_pto")
+                f, n = f.mean("pto"), n.mean("pto")
             ax.plot(tp, f.mean("sea.seed"), "-", color=c, label=f"{device} frequency domain (seed mean)")
             if var == "total_power":
                 spectral = results["jonswap_spectral"].sel({"device.name": device}).total_power.squeeze()
@@ -298,10 +298,10 @@ def figures(folder: Path, results: dict[str, xr.Dataset], target: Path) -> list[
     reg_n = results["regular_nonlinear"].sel({"device.name": "m4-134"}).squeeze("solver.method", drop=True)
     pto = "pto_3"
     for ds, style, label in ((reg_f, "-", "regular, frequency domain"), (reg_n, "o", "regular, nonlinear")):
-        amplitude = np.sqrt(2) * ds.rms_pto_angle.sel(rotary_pto=pto)
+        amplitude = np.sqrt(2) * ds.rms_pto_angle.sel(pto=pto)
         ax.plot(2 * np.pi / ds["sea.period"], np.degrees(amplitude / 0.02), style, color="k", ms=4, label=label)
     irregular = next((folder / "fig11").glob("c[0-9]*.nc"))
-    rao = rao_irregular(open_result(irregular), "pto_angle").sel(rotary_pto=pto)
+    rao = rao_irregular(open_result(irregular), "pto_angle").sel(pto=pto)
     ax.plot(rao.omega, np.degrees(rao), "r-", label="JONSWAP Tp 1.8 s, nonlinear (Welch)")
     ax.set_xlabel("omega [rad/s]")
     ax.set_ylabel("RAO of the hinge angle (float 3 - float 2) [deg/m]")
@@ -368,7 +368,7 @@ def _table_rows(results: dict[str, xr.Dataset]) -> list[str]:
             f = sel.sel({"solver.method": "frequency"})
             n = sel.sel({"solver.method": "beeman"})
             p = n.total_power
-            rms = np.degrees(n.rms_pto_angle.mean("rotary_pto"))
+            rms = np.degrees(n.rms_pto_angle.mean("pto"))
             rows.append(
                 f"| {device} | {tp:.1f} | {float(f.total_power.mean()):.3f} | {float(p.mean()):.3f} "
                 f"({float(p.min()):.3f}-{float(p.max()):.3f}) | {float(f.cwr_paper.mean()):.3f} | "

@@ -95,7 +95,7 @@ def analyse(ds: xr.Dataset, start: float, label: str) -> dict:
     tip_z = -b * (np.sin(phi) - np.sin(phi[0]))
     tip_v = -b * np.cos(phi) * rate
     out: dict = {"label": label, "t": t[keep], "tip_z": tip_z[keep], "tip_v": tip_v[keep]}
-    out["pto_force"] = ds.pto_force.sel(linear_pto="cylinder").values[keep]
+    out["pto_force"] = ds.pto_force.sel(pto="cylinder").values[keep]
     out["pivot_force"] = ds.joint_reaction_force.sel(joint="pivot").values[keep]
     duration = float(t[keep][-1] - t[keep][0])
     out["duration"] = duration

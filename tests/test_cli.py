@@ -80,3 +80,58 @@ def test_info_into_a_closed_pipe_ends_quietly():
     err = proc.stderr.read()
     proc.wait(timeout=60)
     assert err == b""
+
+
+def test_run_stores_compressed_and_single_precision_results(tmp_path) -> None:
+    """--compress LEVEL (lossless zlib) and --float32 (data variables in single precision, coordinates kept):
+    smaller files, float32 on disk, values within float32 rounding of the full-precision run."""
+    import netCDF4
+    import numpy as np
+    import xarray as xr
+
+    from wecss.results import open_result, save
+
+    scene = _small_scene(tmp_path)
+    plain, small = tmp_path / "plain.nc", tmp_path / "small.nc"
+    longer = ["--set", 'sea.duration="12 Tp"']  # 2400 steps: every series is compressed (COMPRESS_MIN_SIZE)
+    assert main(["run", scene, "-o", str(plain), "-q", *longer]) == 0
+    assert main(["run", scene, "-o", str(small), "-q", *longer, "--compress", "4", "--float32"]) == 0
+    assert small.stat().st_size < 0.75 * plain.stat().st_size
+    with netCDF4.Dataset(small) as nc:
+        assert nc["pto_power"].dtype == np.float32 and nc["wave_elevation"].dtype == np.float32
+        assert nc["time"].dtype == np.float64
+        assert nc["pto_power"].filters()["zlib"] and nc["pto_power"].filters()["complevel"] == 4
+        assert not nc["mean_pto_power"].filters()["zlib"]  # one value: not worth an index
+    full, single = open_result(plain), open_result(small)
+    np.testing.assert_array_equal(single.time, full.time)
+    for name in ("pto_power", "pto_angle", "wave_elevation", "mean_pto_power"):
+        np.testing.assert_allclose(single[name], full[name], rtol=2.0**-24, atol=0, err_msg=name)
+        assert not np.array_equal(single[name].values.astype(float), full[name].values), name  # really rounded
+    # compression alone is lossless
+    zipped = save(full, tmp_path / "zipped.nc", compress=9)
+    assert zipped.stat().st_size < plain.stat().st_size
+    xr.testing.assert_identical(open_result(zipped), full)
+
+
+@pytest.mark.parametrize("level", ["10", "-1", "high"])
+def test_run_refuses_a_bad_compression_level_before_the_run(tmp_path, level, capsys) -> None:  # type: ignore[no-untyped-def]
+    with pytest.raises(SystemExit) as stop:
+        main(["run", _small_scene(tmp_path), "-q", "--compress", level])
+    assert stop.value.code == 2
+    assert "--compress" in capsys.readouterr().err
+    assert not (tmp_path / "small.nc").exists()
+
+
+def test_save_refuses_a_bad_compression_level(tmp_path) -> None:
+    import numpy as np
+    import xarray as xr
+
+    from wecss.results import save
+
+    with pytest.raises(ValueError, match="compress must be a zlib level 0"):
+        save(xr.Dataset({"a": ("x", [1.0])}), tmp_path / "a.nc", compress=12)
+    from wecss.netcdf import storage_encoding
+
+    big = xr.Dataset({"a": ("x", np.zeros(2000))})
+    assert storage_encoding(big, compress=False) == {}  # the bools of earlier callers: off, and level 6
+    assert storage_encoding(big, compress=True) == {"a": {"zlib": True, "complevel": 6}}

@@ -26,11 +26,13 @@ def _modules() -> dict[str, Path]:
     return {_module_name(p): p for top in SOURCES for p in sorted((ROOT / top).rglob("*.py"))}
 
 
-def _imports(name: str, path: Path, known: dict[str, Path]) -> set[str]:
-    """Every wecss/controllers module that ``name`` imports, at any depth of the file."""
+def _imports(name: str, path: Path, known: dict[str, Path], source: str | None = None) -> set[str]:
+    """Every wecss/controllers module that ``name`` imports, at any depth of the file (``source``: the file's text,
+    read from ``path`` when not given)."""
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     out: set[str] = set()
-    for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+    text = path.read_text() if source is None else source
+    for node in ast.walk(ast.parse(text, filename=str(path))):
         if isinstance(node, ast.Import):
             targets = [alias.name for alias in node.names]
         elif isinstance(node, ast.ImportFrom):
@@ -118,17 +120,61 @@ def test_no_cycle_between_packages():
     assert _cycles(packages) == []
 
 
-def test_no_private_module_is_imported_from_another_package():
+def _is_private(part: str) -> bool:
+    return part.startswith("_") and not part.startswith("__")
+
+
+def _private_modules_imported_across(graph: dict[str, set[str]]) -> list[str]:
+    """``module -> target`` for every private module (a path part with a leading underscore) imported from
+    outside the package that holds it (subpackages may use their parent's private modules)."""
     wrong = []
-    for module, targets in _graph().items():
+    for module, targets in graph.items():
         for target in targets:
             parts = target.split(".")
-            private = [k for k, part in enumerate(parts) if part.startswith("_") and not part.startswith("__")]
+            private = [k for k, part in enumerate(parts) if _is_private(part)]
             if not private:
                 continue
             owner = ".".join(parts[: private[0]])  # the package whose private module it is
             if not (module == owner or module.startswith(owner + ".")):
                 wrong.append(f"{module} -> {target}")
+    return sorted(wrong)
+
+
+def _private_names_imported_across(
+    name: str, path: Path, known: dict[str, Path], source: str | None = None
+) -> list[str]:
+    """``module -> target:name`` for every private name (function, class, constant) that ``name`` imports with
+    ``from X import _name`` from a module of another package (the package holding X, or its subpackages, may)."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    wrong = []
+    text = path.read_text() if source is None else source
+    for node in ast.walk(ast.parse(text, filename=str(path))):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level:
+            base = package.split(".")
+            base = base[: len(base) - node.level + 1]
+            stem = ".".join([*base, node.module] if node.module else base)
+        else:
+            stem = node.module or ""
+        if stem.split(".")[0] not in SOURCES:
+            continue
+        for alias in node.names:
+            if not _is_private(alias.name) or f"{stem}.{alias.name}" in known:
+                continue  # a public name, or a module (the module check covers those)
+            owner = stem if (stem in known and known[stem].name == "__init__.py") else stem.rpartition(".")[0]
+            if not (name == owner or name.startswith(owner + ".")):
+                wrong.append(f"{name} -> {stem}:{alias.name}")
+    return wrong
+
+
+def test_no_private_module_is_imported_from_another_package():
+    assert _private_modules_imported_across(_graph()) == []
+
+
+def test_no_private_name_is_imported_from_another_package():
+    known = _modules()
+    wrong = [w for name, path in known.items() for w in _private_names_imported_across(name, path, known)]
     assert wrong == []
 
 
@@ -139,6 +185,36 @@ def test_the_checks_find_a_cycle_and_a_private_import():
     modules = _modules()
     path = ROOT / "wecss" / "sim" / "_result.py"
     assert "wecss.compiled" in _imports("wecss.sim._result", path, modules)
+
+
+@pytest.mark.parametrize(
+    ("source", "found"),
+    [
+        ("from wecss.compiled._kernels import accelerations\n", ["wecss.cli -> wecss.compiled._kernels"]),
+        ("from .compiled._compile import compile_plant\n", ["wecss.cli -> wecss.compiled._compile"]),
+        ("import wecss.linear._model as m\n", ["wecss.cli -> wecss.linear._model"]),
+        ("def f():\n    from .compiled import _kernels\n", ["wecss.cli -> wecss.compiled._kernels"]),
+        ("from wecss.compiled import compile_plant\n", []),
+    ],
+)
+def test_the_lint_rule_finds_private_modules_at_any_depth(source, found):
+    """A made-up ``wecss/cli.py`` reaching into another package's private module, absolutely, relatively, as a
+    plain import or inside a function: each is found."""
+    known = _modules()
+    graph = {"wecss.cli": _imports("wecss.cli", ROOT / "wecss" / "cli.py", known, source)}
+    assert _private_modules_imported_across(graph) == found
+
+
+def test_the_lint_rule_finds_private_names_of_another_package():
+    known = _modules()
+    path = ROOT / "wecss" / "results" / "_plot.py"
+    bad = "from ..sim import _notes\nfrom ..compiled import _private_helper as helper\n"
+    assert _private_names_imported_across("wecss.results._plot", path, known, bad) == [
+        "wecss.results._plot -> wecss.sim:_notes",
+        "wecss.results._plot -> wecss.compiled:_private_helper",
+    ]
+    inside = "from ._plot import _pyplot\nfrom . import _metrics\n"  # the same package, and a module
+    assert _private_names_imported_across("wecss.results._summary_plot", path, known, inside) == []
 
 
 @pytest.mark.parametrize("source", SOURCES)

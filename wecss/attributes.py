@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Mapping
 
+import numpy as np
 import xarray as xr
 
 VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
@@ -66,9 +67,8 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "time": {"long_name": "time", "standard_name": "time", "units": "s"},
     "dof_linear": {"long_name": "translational generalised coordinate (joint__label)"},
     "dof_angular": {"long_name": "rotational generalised coordinate (joint__label)"},
-    "pto": {"long_name": "power take-off"},
-    "rotary_pto": {"long_name": "rotary power take-off (on a revolute joint)"},
-    "linear_pto": {"long_name": "linear power take-off (prismatic joint or actuator)"},
+    "pto": {"long_name": "power take-off (in the device spec's order)"},
+    "pto_kind": {"long_name": "kind of power take-off: rotary (on a revolute joint) or linear (prismatic or actuator)"},
     "hydro_dof_linear": {"long_name": "translational degree of freedom of the hydrodynamic database (body__Dof)"},
     "hydro_dof_angular": {"long_name": "rotational degree of freedom of the hydrodynamic database (body__Dof)"},
     "displacement": {"long_name": "translational generalised coordinate", "units": "m"},
@@ -77,19 +77,34 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "angular_velocity": {"long_name": "rotational generalised velocity", "units": "rad/s"},
     "acceleration": {"long_name": "translational generalised acceleration", "units": "m/s^2"},
     "angular_acceleration": {"long_name": "rotational generalised acceleration", "units": "rad/s^2"},
-    "pto_angle": {"long_name": "PTO stroke: joint angle from the spring's rest angle", "units": "rad"},
-    "pto_angular_velocity": {"long_name": "PTO stroke rate", "units": "rad/s"},
-    "pto_torque": {"long_name": "PTO torque (spring, controller), positive driving the angle up", "units": "N m"},
-    "pto_displacement": {"long_name": "PTO stroke from the rest length", "units": "m"},
-    "pto_velocity": {"long_name": "PTO stroke rate", "units": "m/s"},
-    "pto_force": {"long_name": "PTO force (spring, controller), positive extending", "units": "N"},
+    "pto_angle": {
+        "long_name": "rotary PTO stroke: joint angle from the spring's rest angle (NaN for linear PTOs)",
+        "units": "rad",
+    },
+    "pto_angular_velocity": {"long_name": "rotary PTO stroke rate (NaN for linear PTOs)", "units": "rad/s"},
+    "pto_torque": {
+        "long_name": "rotary PTO torque (spring, controller), positive driving the angle up (NaN for linear PTOs)",
+        "units": "N m",
+    },
+    "pto_displacement": {"long_name": "linear PTO stroke from the rest length (NaN for rotary PTOs)", "units": "m"},
+    "pto_velocity": {"long_name": "linear PTO stroke rate (NaN for rotary PTOs)", "units": "m/s"},
+    "pto_force": {
+        "long_name": "linear PTO force (spring, controller), positive extending (NaN for rotary PTOs)",
+        "units": "N",
+    },
     "pto_power": {
         "long_name": "power absorbed by the PTO, -(force - device spring force) * stroke rate",
         "units": "W",
     },
     "mean_pto_power": {"long_name": "mean absorbed PTO power over the statistics window", "units": "W"},
-    "rms_pto_angle": {"long_name": "RMS PTO angle about its mean over the statistics window", "units": "rad"},
-    "rms_pto_displacement": {"long_name": "RMS PTO stroke about its mean over the statistics window", "units": "m"},
+    "rms_pto_angle": {
+        "long_name": "RMS rotary PTO angle about its mean over the statistics window (NaN for linear PTOs)",
+        "units": "rad",
+    },
+    "rms_pto_displacement": {
+        "long_name": "RMS linear PTO stroke about its mean over the statistics window (NaN for rotary PTOs)",
+        "units": "m",
+    },
     "power_bound": {
         "long_name": "complex-conjugate bound of mean absorbed power for the wave components (linear, unconstrained)",
         "units": "W",
@@ -101,6 +116,11 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "force_limit_episodes": {"long_name": "times the controller's force reached the PTO's force limit", "units": "1"},
     "stroke_limit_time": {"long_name": "time the PTO stroke was beyond its limit (end stop engaged)", "units": "s"},
     "stroke_limit_episodes": {"long_name": "times the PTO stroke passed its limit (end stop engaged)", "units": "1"},
+    # frequency-domain steady state (wecss.linear.steady_state)
+    "wave_amplitude": {
+        "long_name": "complex amplitude of the undisturbed wave elevation at the origin, Re[X exp(+i omega t)]",
+        "units": "m",
+    },
     "excitation_force": {"long_name": "wave excitation force, world axes", "units": "N"},
     "excitation_moment": {"long_name": "wave excitation moment about the centre of mass, world axes", "units": "N m"},
     "radiation_force": {"long_name": "radiation memory force (without the A_inf part), world axes", "units": "N"},
@@ -149,6 +169,22 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     },
 }
 """Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
+
+
+def by_pto_kind(
+    values: np.ndarray, rotary: np.ndarray, names: tuple[str, str], dims: tuple[str, ...]
+) -> dict[str, tuple[tuple[str, ...], np.ndarray]]:
+    """A per-PTO quantity as Dataset variables on the one ``pto`` dimension (the last of ``dims``), one variable
+    per kind so units never mix: ``names`` = (rotary name [rad ...], linear name [m ...]), each NaN for the PTOs of
+    the other kind (``rotary`` a mask per PTO); a kind no PTO has gives no variable. When every PTO is of one
+    kind its variable is ``values`` itself (no copy: a long run's time series are held once)."""
+    out = {}
+    for name, mask in zip(names, (rotary, ~rotary), strict=True):
+        if mask.all():
+            out[name] = (dims, values)
+        elif mask.any():
+            out[name] = (dims, np.where(mask, values, np.nan))
+    return out
 
 
 _DERIVED = {

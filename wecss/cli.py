@@ -111,8 +111,8 @@ def _summary(ds: Any) -> str:
     lines.append(f"{'PTO':<12}{'mean power [W]':>16}{'RMS angle [deg]':>18}")
     for name in power.pto.values:
         angle = ""
-        if rms is not None and name in rms[rms.dims[0]].values:
-            angle = f"{np.degrees(float(rms.sel({rms.dims[0]: name}))):18.3f}"
+        if rms is not None and np.isfinite(float(rms.sel(pto=name))):  # NaN for linear PTOs
+            angle = f"{np.degrees(float(rms.sel(pto=name))):18.3f}"
         lines.append(f"{name:<12}{float(power.sel(pto=name)):16.5g}{angle}")
     lines.append(f"{'total':<12}{float(power.sum()):16.5g}")
     if "wave_energy_flux" in ds.attrs:
@@ -134,9 +134,16 @@ def _summary(ds: Any) -> str:
 
 
 def _run(
-    scene_path: str | None, output: str | None, png: str | None, quiet: bool, overrides: Sequence[str] = ()
+    scene_path: str | None,
+    output: str | None,
+    png: str | None,
+    quiet: bool,
+    overrides: Sequence[str] = (),
+    *,
+    compress: int = 0,
+    float32: bool = False,
 ) -> int:
-    from .results import plot_timeseries, save
+    from .results import plot_summary, save
     from .sim import Scene, default_scene_path, simulate
     from .sweep import apply_overrides
 
@@ -148,14 +155,15 @@ def _run(
     if not quiet:
         print(f"scene {path}", file=sys.stderr)
     ds = simulate(scene, progress=not quiet)
-    save(ds, out)
-    if "time" in ds.dims:
+    save(ds, out, compress=compress, float32=float32)
+    plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))
+    if plotted:  # the summary plot needs the elevation or the PTO series
         import matplotlib.pyplot as plt
 
-        fig = plot_timeseries(ds, picture)
+        fig = plot_summary(ds, picture)
         plt.close(fig)
     print(_summary(ds))
-    print(f"wrote {out}" + (f" and {picture}" if "time" in ds.dims else ""))
+    print(f"wrote {out}" + (f" and {picture}" if plotted else ""))
     return 0
 
 
@@ -212,14 +220,14 @@ def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) 
 
 
 def _plot(result: str, png: str | None) -> int:
-    from .results import open_result, plot_timeseries
+    from .results import open_result, plot_summary
 
     picture = Path(png) if png else Path(result).with_suffix(".png")
     check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
     ds = open_result(result)
     import matplotlib.pyplot as plt
 
-    plt.close(plot_timeseries(ds, picture))
+    plt.close(plot_summary(ds, picture))
     print(f"wrote {picture}")
     return 0
 
@@ -239,6 +247,19 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--png", help="summary plot (.png); default: next to the result")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     run.add_argument(
+        "--compress",
+        type=int,
+        default=0,
+        choices=range(10),
+        metavar="LEVEL",
+        help="zlib level of the result file, 0 (none, default) to 9 (smallest); lossless",
+    )
+    run.add_argument(
+        "--float32",
+        action="store_true",
+        help="store the result's variables in single precision (half the size; relative error 6e-8)",
+    )
+    run.add_argument(
         "--set",
         action="append",
         default=[],
@@ -254,7 +275,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. tcp://host:8786")
     sweep.add_argument("--retry-failed", action="store_true", help="run the cases that failed before again")
     sweep.add_argument("-q", "--quiet", action="store_true", help="no progress line")
-    plot = sub.add_parser("plot", help="plot a result file's time series to PNG")
+    plot = sub.add_parser("plot", help="the summary plot of a result file (PNG)")
     plot.add_argument("result", help="result file (.nc)")
     plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")
     return parser
@@ -277,7 +298,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "info":
             return _info(args.target)
         if args.command == "run":
-            return _run(args.scene, args.output, args.png, args.quiet, args.set)
+            return _run(
+                args.scene, args.output, args.png, args.quiet, args.set, compress=args.compress, float32=args.float32
+            )
         if args.command == "sweep":
             return _sweep(args)
         if args.command == "plot":

@@ -55,16 +55,57 @@ def merge_complex(ds: xr.Dataset) -> xr.Dataset:
     return out.drop_dims(COMPLEX_DIM, errors="ignore")
 
 
-def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, compress: bool = False) -> Path:
+COMPRESSION_LEVELS = range(10)
+"""zlib levels :func:`write_netcdf` accepts: 0 (none) to 9 (smallest, slowest)."""
+
+COMPRESS_MIN_SIZE = 1024
+"""Variables with fewer values are stored uncompressed: a compressed (chunked) variable costs kilobytes of index,
+more than zlib saves on a few hundred values."""
+
+
+def storage_encoding(ds: xr.Dataset, *, compress: int | bool = 0, float32: bool = False) -> dict[str, dict]:
+    """The netCDF encoding of every data variable of ``ds`` for a zlib level ``compress`` (0-9; True: 6, False: 0; on
+    variables of at least :data:`COMPRESS_MIN_SIZE` values) and, with ``float32``, single-precision storage of the
+    floating-point data variables (coordinates such as time keep their precision; values come back within float32
+    rounding, a relative 6e-8).
+
+    Raises
+    ------
+    ValueError
+        If ``compress`` is not a whole number from 0 to 9, or ``float32`` not a bool.
+    """
+    level = {True: 6, False: 0}[compress] if isinstance(compress, bool) else compress
+    if not isinstance(level, int | np.integer) or level not in COMPRESSION_LEVELS:
+        raise ValueError(f"compress must be a zlib level 0 (none) to 9 (smallest); got {compress!r}")
+    if not isinstance(float32, bool | np.bool_):
+        raise ValueError(f"float32 must be true or false; got {float32!r}")
+    encoding: dict[str, dict] = {}
+    for name in ds.data_vars:
+        entry: dict[str, object] = {}
+        if level and ds[name].size >= COMPRESS_MIN_SIZE:
+            entry.update(zlib=True, complevel=int(level))
+        if float32 and np.issubdtype(ds[name].dtype, np.floating):
+            entry["dtype"] = "float32"
+        if entry:
+            encoding[str(name)] = entry
+    return encoding
+
+
+def write_netcdf(
+    ds: xr.Dataset, path: str | os.PathLike[str], *, compress: int | bool = 0, float32: bool = False
+) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename).
 
-    Complex variables are split into ``[re, im]``; ``compress`` stores every variable zlib-compressed (lossless).
-    Returns the path written.
+    Complex variables are split into ``[re, im]``. ``compress``: zlib level of every variable, 0 (none) to 9
+    (lossless; True means 6); ``float32``: floating-point data variables stored in single precision (lossy: a
+    relative 6e-8; coordinates keep theirs). Returns the path written.
 
     Raises
     ------
     FileNotFoundError
         If the target folder does not exist.
+    ValueError
+        For a ``compress`` level outside 0-9.
     """
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
@@ -74,7 +115,7 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, compress: bool
         raise IsADirectoryError(f"{str(target)!r} is a folder; give a file name")
     remove_stale_temporaries(target)
     split = split_complex(ds)
-    encoding = {name: {"zlib": True, "complevel": 6} for name in split.data_vars} if compress else None
+    encoding = storage_encoding(split, compress=compress, float32=float32) or None
     with _interrupts_held() as interrupted:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.", suffix=".tmp", dir=folder)
         os.close(fd)

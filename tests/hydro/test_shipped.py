@@ -113,6 +113,23 @@ def test_frequencies_reach_the_heave_damping_tail(shipped: tuple[str, HydroData,
         assert damping[-1] < DAMPING_TAIL * damping.max(), f"{dof}: {damping[-1] / damping.max():.3%} of its peak"
 
 
+def test_long_names_and_units_are_on_disk(shipped: tuple[str, HydroData, BEMSpec]) -> None:
+    """Read with netCDF4 alone (no wecss): every variable the attribute table gives units has them in the file."""
+    import netCDF4
+
+    from wecss.attributes import VARIABLE_ATTRS
+
+    name, _, _ = shipped
+    missing = []
+    with netCDF4.Dataset(DATA_DIR / f"{name}.nc") as nc:
+        for variable in nc.variables.values():
+            expected = VARIABLE_ATTRS.get(variable.name, {})
+            for key, value in expected.items():
+                if key in ("long_name", "units") and getattr(variable, key, None) != value:
+                    missing.append(f"{variable.name}.{key}")
+    assert missing == []
+
+
 def test_files_are_small(shipped: tuple[str, HydroData, BEMSpec]) -> None:
     name, _, _ = shipped
     assert (DATA_DIR / f"{name}.nc").stat().st_size < 5e6

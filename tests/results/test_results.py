@@ -43,7 +43,7 @@ def test_every_variable_has_long_name_and_units(run):
             "dof_linear",
             "dof_angular",
             "pto",
-            "rotary_pto",
+            "pto_kind",
             "hydro_dof_linear",
             "hydro_dof_angular",
             "body",
@@ -112,10 +112,10 @@ def test_capture_width_ratio_conventions():
 def test_rms_hinge_angle_of_a_sinusoid():
     t = np.linspace(0.0, 20.0, 4001)
     ds = xr.Dataset(
-        {"pto_angle": (("time", "rotary_pto"), 0.03 * np.sin(2 * np.pi * t)[:, None] + 0.01)},
-        coords={"time": t, "rotary_pto": ["h"]},
+        {"pto_angle": (("time", "pto"), 0.03 * np.sin(2 * np.pi * t)[:, None] + 0.01)},
+        coords={"time": t, "pto": ["h"]},
     )
-    assert float(rms_hinge_angle(ds, 1.0).sel(rotary_pto="h")) == pytest.approx(0.03 / np.sqrt(2), rel=1e-4)
+    assert float(rms_hinge_angle(ds, 1.0).sel(pto="h")) == pytest.approx(0.03 / np.sqrt(2), rel=1e-4)
 
 
 def test_regular_wave_rao_matches_the_frequency_domain():
@@ -139,7 +139,7 @@ def test_regular_wave_rao_matches_the_frequency_domain():
 
 def test_irregular_rao_and_spectral_moments(run):
     rao = rao_irregular(run, window=1.0, segments=4)
-    assert rao.dims == ("omega", "rotary_pto")
+    assert rao.dims == ("omega", "pto")
     peak = float(rao.omega[int(np.nanargmax(rao.values[:, 0]))])
     assert 2.0 < peak < 15.0
     moments = spectral_moments(run, window=1.0)

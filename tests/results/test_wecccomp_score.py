@@ -16,10 +16,10 @@ def _run(c: float, amplitude: float, omega: float) -> xr.Dataset:
     return xr.Dataset(
         {
             "pto_power": (("time", "pto"), (-f * v)[:, None]),
-            "pto_force": (("time", "linear_pto"), f[:, None]),
-            "pto_displacement": (("time", "linear_pto"), (0.01 + amplitude / omega * np.sin(omega * t))[:, None]),
+            "pto_force": (("time", "pto"), f[:, None]),
+            "pto_displacement": (("time", "pto"), (0.01 + amplitude / omega * np.sin(omega * t))[:, None]),
         },
-        coords={"time": t, "pto": ["motor"], "linear_pto": ["motor"]},
+        coords={"time": t, "pto": ["motor"], "pto_kind": ("pto", ["linear"])},
     )
 
 

@@ -67,9 +67,7 @@ def test_reactions_close_in_a_wave_run_and_pto_loads_act_along_the_cylinder():
     for hinge in ("pivot", "tip"):
         np.testing.assert_allclose(moments.sel(joint=hinge, axis="y"), 0.0, atol=1e-10 * peak)
     end_a = ds.pto_end_force.sel(pto="cylinder", pto_end="a").values
-    np.testing.assert_allclose(
-        np.linalg.norm(end_a, axis=1), np.abs(ds.pto_force.sel(linear_pto="cylinder")), rtol=1e-12
-    )
+    np.testing.assert_allclose(np.linalg.norm(end_a, axis=1), np.abs(ds.pto_force.sel(pto="cylinder")), rtol=1e-12)
     np.testing.assert_allclose(ds.pto_end_force.sel(pto="cylinder", pto_end="b"), 0.0)  # that end is on the ground
     assert ds.joint_reaction_force.attrs["units"] == "N" and ds.joint_reaction_moment.attrs["units"] == "N m"
 

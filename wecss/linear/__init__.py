@@ -1,8 +1,10 @@
 """The MFM equations linearised about the static equilibrium: one model (state-space system with radiation
 states, and the exact frequency response from A(omega) and B(omega)), its exact discretisation and runs in modal
-coordinates, the frequency-domain steady state and the modal table."""
+coordinates, the frequency-domain steady state, the modal table, and the model's inputs rebuilt from a result."""
 
+from ._frequency import response_amplitudes as response_amplitudes
 from ._frequency import steady_state as steady_state
+from ._inputs import linear_inputs as linear_inputs
 from ._modal_recursion import ModalForm as ModalForm
 from ._modal_recursion import ModalSteps as ModalSteps
 from ._modal_recursion import NotDiagonalisable as NotDiagonalisable

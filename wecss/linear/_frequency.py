@@ -1,36 +1,159 @@
 """The exact frequency-domain steady state of the linearised MFM equations on a scene's waves (the reference the
-nonlinear simulator must reproduce in small waves: same hydro data, same record)."""
+nonlinear simulator must reproduce in small waves: same hydro data, same record), as a Dataset."""
 
 from __future__ import annotations
 
 import numpy as np
+import xarray as xr
 
+from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import CompiledScene
+from ..hydro import split_dof
 from ..waves import evaluate
-from ._model import linearize
+from ._model import LinearModel, linearize
 
 
-def steady_state(compiled: CompiledScene, time: np.ndarray) -> dict[str, np.ndarray]:
-    """Steady-state linear response to the scene's waves (no ramp) at ``time`` [s].
+def response_amplitudes(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
+    """Complex amplitudes xi_hat (nv, n_w) of the generalised displacements from the equilibrium, Re[xi_hat
+    e^{i omega t}], for excitation amplitudes ``coefficients`` (n_h, n_w) [N, N m] at ``omega`` (n_w,) [rad/s]
+    on the hydro DOFs: the exact frequency response of ``model`` [m, rad]."""
+    omega = np.asarray(omega, dtype=float)
+    if omega.size == 0:
+        return np.zeros((model.mass.shape[0], 0), dtype=complex)
+    return np.einsum("wvj,jw->vw", model.frequency_response(omega), coefficients)
+
+
+def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.Dataset:
+    """Steady-state linear response to the scene's wave components (no ramp, no transient), exact from the
+    database's A(omega) and B(omega), with the scene's linear PTO gains.
+
+    Parameters
+    ----------
+    compiled : CompiledScene
+        A scene in waves whose controller has linear gains (such as "damping").
+    time : array, optional
+        Times [s] at which to also give the time series (absolute values, laid out as a result's:
+        ``displacement``, ``angle``, ``pto_angle``, ``pto_displacement`` and their rates); without it, only the
+        amplitudes.
 
     Returns
     -------
-    dict
-        ``displacement`` (n_t, nv) generalised displacements from the equilibrium; ``pto`` (n_t, n_pto) PTO
-        strokes from the equilibrium; ``amplitudes`` (nv, n_components) complex.
+    Dataset
+        Dimensions ``omega`` (the wave components), ``dof_linear`` / ``dof_angular``, ``pto`` (with ``pto_kind``)
+        and ``time`` when given. Complex amplitudes, Re[X e^{+i omega t}] about the equilibrium:
+        ``displacement_amplitude`` [m] and ``angle_amplitude`` [rad] of the generalised coordinates,
+        ``pto_angle_amplitude`` [rad] and ``pto_displacement_amplitude`` [m] of the PTO strokes (NaN for PTOs of
+        the other kind, absent for a kind no PTO has), ``excitation_force_amplitude`` [N] and
+        ``excitation_moment_amplitude`` [N m] on the hydro DOFs (``hydro_dof_linear`` / ``hydro_dof_angular``),
+        ``wave_amplitude`` of the undisturbed elevation at the origin [m]; ``mean_pto_power`` [W], the exact mean
+        absorbed power of each PTO's linear damping c, sum over components of c omega^2 |x_hat|^2 / 2.
+        Attributes ``rho`` and ``g`` of the data.
 
     Raises
     ------
     ValueError
-        In calm water, or for a controller without linear gains.
+        In calm water, for a controller without linear gains, or for time series of a device with a free base.
+    TypeError
+        If ``compiled`` is not a CompiledScene.
     """
+    if not isinstance(compiled, CompiledScene):
+        raise TypeError(f"steady_state takes a CompiledScene (wecss.sim.compile_scene); got {type(compiled).__name__}")
     if compiled.excitation is None:
         raise ValueError("calm water: the steady state is the equilibrium")
     if not compiled.linear_controller:
         raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
     exc = compiled.excitation
     model = linearize(compiled)
-    h = model.frequency_response(exc.omega)
-    amplitudes = np.einsum("wvj,jw->vw", h, exc.coefficients)
-    xi = np.real(evaluate(amplitudes, exc.omega, np.asarray(time, dtype=float))).T
-    return {"displacement": xi, "pto": xi @ model.pto_jacobian.T, "amplitudes": amplitudes}
+    device = compiled.device.model
+    amplitudes = response_amplitudes(model, exc.omega, exc.coefficients)  # (nv, n_w)
+    stroke = model.pto_jacobian @ amplitudes  # (n_pto, n_w)
+    angular = np.array(device.angular_velocities, dtype=bool)
+    names = np.array(device.velocity_names)
+    ptos = [p.name for p in compiled.device.ptos]
+    rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
+    data: dict[str, tuple] = {"wave_amplitude": (("omega",), _wave_amplitudes(compiled, exc.omega))}
+    coords: dict[str, object] = {"omega": exc.omega}
+    rotation = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in exc.dofs], dtype=bool)
+    for mask, name, dim in (
+        (~rotation, "excitation_force_amplitude", "hydro_dof_linear"),
+        (rotation, "excitation_moment_amplitude", "hydro_dof_angular"),
+    ):
+        if mask.any():
+            data[name] = (("omega", dim), exc.coefficients[mask].T)
+            coords[dim] = [d for d, m in zip(exc.dofs, mask, strict=True) if m]
+    for mask, name, dim in (
+        (~angular, "displacement_amplitude", "dof_linear"),
+        (angular, "angle_amplitude", "dof_angular"),
+    ):
+        if mask.any():
+            data[name] = (("omega", dim), amplitudes[mask].T)
+            coords[dim] = list(names[mask])
+    if ptos:
+        kinds = ("pto_angle_amplitude", "pto_displacement_amplitude")
+        data.update(by_pto_kind(stroke.T, rotary, kinds, ("omega", "pto")))
+        power = 0.5 * model.pto_damping * np.sum((exc.omega * np.abs(stroke)) ** 2, axis=1)
+        data["mean_pto_power"] = (("pto",), power)
+        coords["pto"] = ptos
+        coords["pto_kind"] = ("pto", ["rotary" if r else "linear" for r in rotary])
+    if time is not None:
+        _add_time_series(data, coords, compiled, model, amplitudes, np.atleast_1d(np.asarray(time, dtype=float)))
+    ds = apply_attrs(
+        xr.Dataset(
+            data,
+            coords=coords,
+            attrs={
+                "title": f"steady state of {compiled.device.name} (exact frequency domain)",
+                "convention": "complex amplitudes X of Re[X exp(+i omega t)], about the static equilibrium",
+                "rho": compiled.hydro.rho,
+                "g": compiled.hydro.g,
+            },
+        )
+    )
+    if "mean_pto_power" in ds:
+        ds.mean_pto_power.attrs["long_name"] = "mean absorbed power of the PTO's linear damping (exact, long-time)"
+    return ds
+
+
+def _wave_amplitudes(compiled: CompiledScene, omega: np.ndarray) -> np.ndarray:
+    """The complex amplitudes of the wave components at ``omega`` [m] (the excitation keeps a subset)."""
+    waves = compiled.waves
+    out = np.full(omega.size, np.nan, dtype=complex)
+    if waves is None:
+        return out
+    index = {float(w): k for k, w in enumerate(waves.omega)}
+    for k, w in enumerate(omega):
+        if float(w) in index:
+            out[k] = waves.amplitude[index[float(w)]]
+    return out
+
+
+def _add_time_series(
+    data: dict[str, tuple],
+    coords: dict[str, object],
+    compiled: CompiledScene,
+    model: LinearModel,
+    amplitudes: np.ndarray,
+    time: np.ndarray,
+) -> None:
+    """The steady state at ``time``: generalised coordinates and PTO strokes with their rates (absolute values)."""
+    device = compiled.device.model
+    if device.nq != device.nv:
+        raise ValueError("time series of the steady state need joint coordinates (no free base); use the amplitudes")
+    omega = compiled.excitation.omega if compiled.excitation is not None else np.zeros(0)
+    xi = np.real(evaluate(amplitudes, omega, time)).T  # (n_t, nv)
+    rate = np.real(evaluate(1j * omega * amplitudes, omega, time)).T
+    angular = np.array(device.angular_velocities, dtype=bool)
+    q = compiled.q0[None] + xi
+    for mask, (position, velocity), dim in (
+        (~angular, ("displacement", "velocity"), "dof_linear"),
+        (angular, ("angle", "angular_velocity"), "dof_angular"),
+    ):
+        if mask.any():
+            data[position] = (("time", dim), q[:, mask])
+            data[velocity] = (("time", dim), rate[:, mask])
+    rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
+    stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
+    stroke_rate = rate @ model.pto_jacobian.T
+    data.update(by_pto_kind(stroke, rotary, ("pto_angle", "pto_displacement"), ("time", "pto")))
+    data.update(by_pto_kind(stroke_rate, rotary, ("pto_angular_velocity", "pto_velocity"), ("time", "pto")))
+    coords["time"] = time

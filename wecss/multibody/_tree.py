@@ -290,6 +290,22 @@ class Multibody:
         return tuple(f"{j.name}__{lab}" for j in self.ordered_joints for lab in j.labels)
 
     @property
+    def angular_velocities(self) -> tuple[bool, ...]:
+        """For each generalised velocity, whether it is a rotation [rad/s] rather than a translation [m/s]:
+        revolute joints and the rotations of planar and free bases."""
+        out: list[bool] = []
+        for joint in self.ordered_joints:
+            if joint.kind == "revolute":
+                out.append(True)
+            elif joint.kind == "planar":
+                out += [False, False, True]
+            elif joint.kind == "free":
+                out += [False] * 3 + [True] * 3
+            else:
+                out += [False] * joint.nv
+        return tuple(out)
+
+    @property
     def coordinate_names(self) -> tuple[str, ...]:
         """Generalised coordinate names (a free base has x, y, z, qw, qx, qy, qz)."""
         out: list[str] = []

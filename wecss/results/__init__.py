@@ -25,3 +25,4 @@ from ._plot import plot_timeseries as plot_timeseries
 from ._sn_curves import SN_CURVES as SN_CURVES
 from ._sn_curves import SNCurve as SNCurve
 from ._sn_curves import sn_curve as sn_curve
+from ._summary_plot import plot_summary as plot_summary

@@ -115,7 +115,8 @@ def capture_width_ratio(
 
 
 def rms_hinge_angle(ds: xr.Dataset, window: Window = None) -> xr.DataArray:
-    """RMS of each rotary PTO's angle about its mean over the window [rad] (paper Fig. 8)."""
+    """RMS of each rotary PTO's angle about its mean over the window [rad] (paper Fig. 8); on the ``pto``
+    dimension, NaN for linear PTOs."""
     if "pto_angle" not in ds:
         if "rms_pto_angle" in ds:
             if window is not None:
@@ -213,6 +214,17 @@ def spectral_moments(
     return out
 
 
+def _linear_ptos(ds: xr.Dataset) -> list[str]:
+    """Names of the result's linear PTOs (``pto_kind`` "linear"; without that coordinate, the PTOs whose
+    ``pto_displacement`` is not all NaN), in the result's order."""
+    if "pto_kind" in ds.coords:
+        return [str(n) for n, kind in zip(ds.pto.values, ds.pto_kind.values, strict=True) if kind == "linear"]
+    if "pto_displacement" not in ds:
+        return []
+    has = ds.pto_displacement.notnull().any([d for d in ds.pto_displacement.dims if d != "pto"])
+    return [str(n) for n, h in zip(ds.pto.values, has.values, strict=True) if h]
+
+
 def wecccomp_score(
     ds: xr.Dataset,
     *,
@@ -261,7 +273,7 @@ def wecccomp_score(
     needed = ("pto_power", "pto_force", "pto_displacement")
     if any(name not in ds for name in needed):
         raise ValueError(f"the result needs {', '.join(needed)} (a linear PTO and the 'pto' outputs)")
-    names = [str(n) for n in ds.linear_pto.values]
+    names = _linear_ptos(ds)
     if pto is None:
         if len(names) != 1:
             raise ValueError(f"the device has linear PTOs {names}: say which with pto=")
@@ -271,12 +283,12 @@ def wecccomp_score(
     t = ds.time.values
     if not t[0] <= start < t[-1]:
         raise ValueError(f"start ({start!r} s) must lie within the run ({t[0]:.4g}-{t[-1]:.4g} s)")
-    stroke = ds.pto_displacement.sel(linear_pto=pto).values
+    stroke = ds.pto_displacement.sel(pto=pto).values
     stroke = stroke - stroke[0]
     keep = t >= start
     power = ds.pto_power.sel(pto=pto).values[keep]
     electrical = np.where(power >= 0, efficiency * power, power / efficiency)
-    force = np.percentile(np.abs(ds.pto_force.sel(linear_pto=pto).values[keep]), 98)
+    force = np.percentile(np.abs(ds.pto_force.sel(pto=pto).values[keep]), 98)
     travel = np.percentile(np.abs(stroke[keep]), 98)
     peak = np.percentile(np.abs(electrical), 98)
     mean = float(np.mean(electrical))

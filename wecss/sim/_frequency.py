@@ -8,7 +8,7 @@ import time as _time
 import numpy as np
 
 from ..compiled import CompiledScene
-from ..linear import linearize
+from ..linear import linearize, response_amplitudes
 from ..waves import evaluate
 from ._load_amplitudes import Spectral
 from ._result import Record, window_statistics
@@ -38,7 +38,7 @@ def run_frequency_domain(compiled: CompiledScene) -> Record:
         amplitudes = np.zeros((nv, 0), dtype=complex)
     else:
         omega, coefficients = compiled.excitation.omega, compiled.excitation.coefficients
-        amplitudes = np.einsum("wvj,jw->vw", model.frequency_response(omega), coefficients)  # (nv, n_w)
+        amplitudes = response_amplitudes(model, omega, coefficients)  # (nv, n_w)
 
     def signal(values: np.ndarray, times: np.ndarray) -> np.ndarray:
         """Re[sum_k values[:, k] exp(i omega_k t)] at ``times`` (n_t, n_rows)."""

@@ -1,8 +1,11 @@
 """The result Dataset of a run (DESIGN.md "Results"), built from the raw :class:`Record` every runner returns.
 
 Dimensions: ``time``; ``dof_linear`` / ``dof_angular`` (generalised coordinates, translations and rotations kept
-apart); ``rotary_pto`` / ``linear_pto`` and ``pto`` (all PTOs, for power); ``hydro_dof_linear`` /
-``hydro_dof_angular`` (forces and moments on the hydrodynamic DOFs); ``body`` and ``axis`` (poses).
+apart); ``pto`` (every PTO, in the device spec's order, with the coordinate ``pto_kind``: "rotary" or "linear");
+``hydro_dof_linear`` / ``hydro_dof_angular`` (forces and moments on the hydrodynamic DOFs, bodies in the device
+spec's order); ``body`` and ``axis`` (poses). Every per-PTO variable has the one ``pto`` dimension: a rotary PTO's
+stroke is ``pto_angle`` [rad], a linear one's ``pto_displacement`` [m], each NaN for the PTOs of the other kind
+(and absent when the device has none of that kind), so ``ds.pto_angle * ds.pto_power`` stays (time, pto).
 Only the groups the scene's outputs ask for are present; statistics over the final window are always there.
 """
 
@@ -17,7 +20,7 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
-from ..attributes import apply_attrs
+from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import JIT, CompiledScene, hydro_velocity, poses
 from ..control import PowerBound, power_bound
 from ..hydro import split_dof
@@ -83,10 +86,12 @@ def hydro_angular(compiled: CompiledScene) -> np.ndarray:
 
 
 def grouped_hydro_order(compiled: CompiledScene) -> np.ndarray:
-    """The hydro DOFs with the translations first and the rotations after (each in the database's order): the
-    column order in which the fixed-step runs store forces on them, so that each kind is one block of columns."""
-    angular = hydro_angular(compiled)
-    return np.concatenate([np.flatnonzero(~angular), np.flatnonzero(angular)]).astype(np.int64)
+    """The hydro DOFs with the translations first and the rotations after (each in the device spec's body order,
+    :func:`natural_hydro_order`): the column order in which the fixed-step runs store forces on them, so that each
+    kind is one block of columns."""
+    natural = natural_hydro_order(compiled)
+    angular = hydro_angular(compiled)[natural]
+    return np.concatenate([natural[~angular], natural[angular]]).astype(np.int64)
 
 
 def _hydro_columns(record: Record, values: np.ndarray) -> np.ndarray:
@@ -113,20 +118,9 @@ def window_statistics(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f:
 
 
 def dof_kinds(compiled: CompiledScene) -> tuple[list[str], np.ndarray]:
-    """Velocity names and a mask of the angular ones (by joint kind: revolute joints and the rotations of planar
-    and free bases are angular)."""
+    """Velocity names and a mask of the angular ones (``Multibody.angular_velocities``)."""
     model = compiled.device.model
-    angular: list[bool] = []
-    for joint in model.ordered_joints:
-        if joint.kind == "revolute":
-            angular.append(True)
-        elif joint.kind == "planar":
-            angular += [False, False, True]
-        elif joint.kind == "free":
-            angular += [False] * 3 + [True] * 3
-        else:
-            angular += [False] * joint.nv
-    return list(model.velocity_names), np.array(angular, dtype=bool)
+    return list(model.velocity_names), np.array(model.angular_velocities, dtype=bool)
 
 
 def _tangent(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
@@ -159,6 +153,17 @@ def _columns(mask: np.ndarray) -> slice | np.ndarray:
     if index.size and index[-1] - index[0] + 1 == index.size:
         return slice(int(index[0]), int(index[-1]) + 1)
     return index
+
+
+def natural_hydro_order(compiled: CompiledScene) -> np.ndarray:
+    """Indices that put the hydro DOFs in the device spec's body order (the database may list its bodies
+    otherwise), each body's DOFs in the database's order."""
+    bodies = [b.hydro_body for b in compiled.device.model.bodies if b.hydro_body is not None]
+    dofs = list(compiled.hydro.dofs)
+    rank = {body: k for k, body in enumerate(bodies)}
+    return np.array(
+        sorted(range(len(dofs)), key=lambda i: (rank.get(split_dof(dofs[i])[0], len(rank)), i)), dtype=np.int64
+    )
 
 
 def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
@@ -217,10 +222,14 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     scene = compiled.scene
     groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
     names, angular = dof_kinds(compiled)
-    hydro_dofs = list(compiled.hydro.dofs)
-    angular_h = hydro_angular(compiled)
-    # the record's forces on the hydro DOFs may be stored translations first (``Record.hydro_order``)
-    stored_angular = angular_h if record.hydro_order is None else angular_h[record.hydro_order]
+    # hydro-DOF columns in the device spec's body order; the fixed-step runs store them so already, translations
+    # first (``Record.hydro_order``: each kind is then a view of the record), the other runs in the database's order
+    stored = natural_hydro_order(compiled) if record.hydro_order is None else record.hydro_order
+    hydro_dofs = [compiled.hydro.dofs[i] for i in stored]
+    stored_angular = hydro_angular(compiled)[stored]
+    exc, rad = (
+        (record.exc[:, stored], record.rad[:, stored]) if record.hydro_order is None else (record.exc, record.rad)
+    )
     pto_names = [p.name for p in compiled.device.ptos]
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     data: dict[str, Any] = {}
@@ -235,15 +244,15 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         _split(data, record.v, angular, "velocity", "angular_velocity", ("dof_linear", "dof_angular"))
         _split(data, record.a, angular, "acceleration", "angular_acceleration", ("dof_linear", "dof_angular"))
     if "pto" in groups and pto_names:
-        _split(data, record.x, rotary, "pto_displacement", "pto_angle", ("linear_pto", "rotary_pto"))
-        _split(data, record.xd, rotary, "pto_velocity", "pto_angular_velocity", ("linear_pto", "rotary_pto"))
-        _split(data, record.f, rotary, "pto_force", "pto_torque", ("linear_pto", "rotary_pto"))
+        data.update(by_pto_kind(record.x, rotary, ("pto_angle", "pto_displacement"), ("time", "pto")))
+        data.update(by_pto_kind(record.xd, rotary, ("pto_angular_velocity", "pto_velocity"), ("time", "pto")))
+        data.update(by_pto_kind(record.f, rotary, ("pto_torque", "pto_force"), ("time", "pto")))
         # absorbed power: the device spring's force -k x is conservative and left out
         data["pto_power"] = (("time", "pto"), -(record.f + compiled.plant.pto_spring * record.x) * record.xd)
     if "excitation" in groups and n_t:
         _split(
             data,
-            record.exc,
+            exc,
             stored_angular,
             "excitation_force",
             "excitation_moment",
@@ -252,7 +261,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     if "radiation" in groups and n_t:
         _split(
             data,
-            record.rad,
+            rad,
             stored_angular,
             "radiation_force",
             "radiation_moment",
@@ -261,8 +270,8 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         u = np.array([hydro_velocity(compiled.plant, qq, vv) for qq, vv in zip(record.q, record.v, strict=True)])
         _split(
             data,
-            u,
-            angular_h,
+            u[:, stored],
+            stored_angular,
             "hydro_velocity",
             "hydro_angular_velocity",
             ("hydro_dof_linear", "hydro_dof_angular"),
@@ -289,19 +298,13 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
             data["stroke_limit_episodes"] = (("pto",), record.limits[3])
         mean = record.stats[3] / count
         rms = np.sqrt(np.maximum(record.stats[1] / count - mean**2, 0.0))  # about the window's mean, as the metric
-        if rotary.any():
-            data["rms_pto_angle"] = (("rotary_pto",), rms[rotary])
-        if (~rotary).any():
-            data["rms_pto_displacement"] = (("linear_pto",), rms[~rotary])
+        data.update(by_pto_kind(rms, rotary, ("rms_pto_angle", "rms_pto_displacement"), ("pto",)))
         coords["pto"] = pto_names
-        if rotary.any():
-            coords["rotary_pto"] = [n for n, r in zip(pto_names, rotary, strict=True) if r]
-        if (~rotary).any():
-            coords["linear_pto"] = [n for n, r in zip(pto_names, rotary, strict=True) if not r]
+        coords["pto_kind"] = ("pto", ["rotary" if r else "linear" for r in rotary])
     for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
         if any(dim in v[0] for v in data.values()):
             coords[dim] = values
-    for dim, mask in (("hydro_dof_linear", ~angular_h), ("hydro_dof_angular", angular_h)):
+    for dim, mask in (("hydro_dof_linear", ~stored_angular), ("hydro_dof_angular", stored_angular)):
         if any(dim in v[0] for v in data.values()):
             coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
     n_steps = compiled.n_steps
