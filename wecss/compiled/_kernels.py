@@ -286,7 +286,7 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
 
 @kernel
 def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
-    """Gravity, buoyancy and linear hydrostatic restoring force, world axes (6n,) [N, N m]."""
+    """Gravity, buoyancy and linear hydrostatic and mooring restoring force, world axes (6n,) [N, N m]."""
     hi = p.hydro_index
     disp = np.empty(hi.shape[0])
     for k in range(hi.shape[0]):
@@ -363,7 +363,7 @@ def accelerations(
         rhs[k] -= gyro[act[k]]
     hi = p.hydro_index
     u = hydro_rows(bw, v, hi)
-    load = hydro_force + newest @ u
+    load = hydro_force + newest @ u - p.mooring_damping @ u  # the moorings' dampers
     force = hydrostatic_force(p, rot, pos)
     for k in range(hi.shape[0]):
         force[hi[k]] += load[k]

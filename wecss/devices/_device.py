@@ -13,9 +13,9 @@ from scipy.linalg import eig
 from ..constants import GRAVITY
 from ..hydro import HydroData
 from ..hydro import load as load_hydro
-from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Multibody, StaticModel
+from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Mooring, Multibody, StaticModel
 from ._members import Member, read_members
-from ._spec import DeviceSpecError, build_model, read_spec
+from ._spec import DeviceSpecError, build_model, build_moorings, read_spec
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,6 +37,8 @@ class Device:
         The spec it was built from (for round trips into result attributes).
     members : tuple of Member
         Beam members for stress recovery (empty when the spec declares none).
+    moorings : tuple of Mooring
+        Linear moorings (empty when the spec declares none).
     """
 
     name: str
@@ -47,6 +49,7 @@ class Device:
     assumptions: Mapping[str, str]
     spec: Mapping[str, Any] = field(repr=False)
     members: tuple[Member, ...] = ()
+    moorings: tuple[Mooring, ...] = ()
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -69,7 +72,8 @@ class Device:
             members = read_members(spec["name"], list(spec.get("members", [])), list(model.body_names))
         except ValueError as err:
             raise DeviceSpecError(str(err)) from None
-        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members)
+        moorings = build_moorings(spec, model)
+        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings)
 
     def member(self, name: str) -> Member:
         """The beam member of that name.
@@ -111,8 +115,16 @@ class Device:
         return load_hydro(str(src))
 
     def coupling(self, hydro: str | Path | HydroData | None = None) -> HydroCoupling:
-        """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass)."""
-        return HydroCoupling.from_hydro(self.model, self.hydro(hydro))
+        """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass),
+        with the device's moorings.
+
+        Raises
+        ------
+        ValueError
+            If the model's bodies do not match the database's, or a mooring holds a DOF the database has no data
+            for.
+        """
+        return HydroCoupling.from_hydro(self.model, self.hydro(hydro), self.moorings)
 
     def statics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> StaticModel:
         """Gravity, buoyancy, hydrostatics and PTO springs at rest."""
@@ -173,6 +185,12 @@ class Device:
                 f"joint {p.joint}" if isinstance(p, JointPTO) else f"{p.body_a or 'ground'} -> {p.body_b or 'ground'}"
             )
             lines.append(f"  {p.name:10s} {where}: damping {p.damping:g}, stiffness {p.stiffness:g}")
+        if self.moorings:
+            lines.append("moorings:")
+            for mooring in self.moorings:
+                parts = [f"{d} {v:g}" for d, v in mooring.stiffness.items()]
+                parts += [f"{d} damping {v:g}" for d, v in mooring.damping.items()]
+                lines.append(f"  {mooring.body:10s} {', '.join(parts)} [SI]")
         try:
             result = self.natural_periods(hydro)
         except (ValueError, FileNotFoundError) as err:

@@ -185,14 +185,39 @@ def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
             f"{', '.join(big)}; linear hydrodynamics lose accuracy"
         )
     tenth = max(1, q.shape[0] // 10)
-    drift = np.linalg.norm(position[-tenth:, :, :2].mean(axis=0) - position[:tenth, :, :2].mean(axis=0), axis=-1)
+    shift = position[-tenth:, :, :2].mean(axis=0) - position[:tenth, :, :2].mean(axis=0)
+    # only the horizontal directions nothing restores (a mooring or a joint to the ground holds the others)
+    drift = np.linalg.norm(shift * unrestrained_directions(compiled), axis=-1)
     far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
     if far:
         notes.append(
             f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run "
-            f"({', '.join(far)}); nothing restores it (the device has no mooring)"
+            f"({', '.join(far)}); nothing restores it: give the device a linear mooring ([[moorings]] in its "
+            "spec, docs/byo-bem.md) or a solver.translation_bound"
         )
     return notes
+
+
+#: Singular values of the static stiffness below this fraction of the largest are free directions.
+FREE_DIRECTION_TOL = 1e-9
+
+
+def unrestrained_directions(compiled: CompiledScene) -> np.ndarray:
+    """(n_body, 2): 1.0 where a body's centre of mass can move along world x (column 0) or y (column 1) without a
+    restoring force (along a null vector of the static stiffness, moorings and PTO springs included), else 0.0."""
+    b, _, _, _ = equilibrium_maps(compiled)
+    k = compiled.stiffness
+    n = b.shape[0] // 6
+    if k.size == 0:
+        return np.zeros((n, 2))
+    _, values, vt = np.linalg.svd(k)
+    free = vt[values <= FREE_DIRECTION_TOL * max(float(values[0]), 1e-300)]
+    motion = b @ free.T  # Cartesian motion along each free direction (6n, n_free)
+    out = np.zeros((n, 2))
+    for i in range(n):
+        for axis in range(2):
+            out[i, axis] = float(np.any(np.abs(motion[6 * i + axis]) > 1e-9))
+    return out
 
 
 #: The default translation bound: this multiple of the largest body size V^(1/3).
