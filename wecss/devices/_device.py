@@ -11,7 +11,7 @@ import numpy as np
 from scipy.linalg import eig
 
 from ..constants import GRAVITY
-from ..hydro import HydroData
+from ..hydro import HydroData, is_wecss_database
 from ..hydro import load as load_hydro
 from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Mooring, Multibody, StaticModel
 from ._members import Member, read_members
@@ -39,6 +39,8 @@ class Device:
         Beam members for stress recovery (empty when the spec declares none).
     moorings : tuple of Mooring
         Linear moorings (empty when the spec declares none).
+    hydro_options : mapping
+        Keyword arguments of the reader of the ``hydro`` file (the spec's ``[hydro_options]``).
     """
 
     name: str
@@ -50,6 +52,7 @@ class Device:
     spec: Mapping[str, Any] = field(repr=False)
     members: tuple[Member, ...] = ()
     moorings: tuple[Mooring, ...] = ()
+    hydro_options: Mapping[str, Any] = field(default_factory=dict)
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -65,7 +68,7 @@ class Device:
         spec, folder = read_spec(source)
         model, ptos = build_model(spec)
         hydro = spec.get("hydro")
-        if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out"))):
+        if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out", ".h5"))):
             hydro = str((folder / hydro).resolve())
         assumptions = {str(k): str(v) for k, v in spec.get("assumptions", {}).items()}
         try:
@@ -92,27 +95,64 @@ class Device:
     def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:
         """The device's hydrodynamic database (``source`` overrides the spec's: a HydroData, name or path).
 
+        A BEM output file is read with the spec's ``[hydro_options]`` (keyword arguments of its reader:
+        ``HydroData.from_capytaine`` for a Capytaine ``.nc``, ``from_wamit`` for ``.out``, ``from_bemio`` for
+        ``.h5``). A ``.nc`` file is a wecss database when it carries the schema's ``rho`` and ``g`` attributes,
+        else Capytaine output (always, when options are given).
+
         Raises
         ------
         ValueError
-            If neither the spec nor ``source`` names a database.
+            If neither the spec nor ``source`` names a database; if ``hydro_options`` are given for a database
+            that is not a BEM output file, or name keywords the reader does not take.
+        FileNotFoundError
+            If the file does not exist.
+        HydroDataError
+            If the file is not a readable database (the message names the file and what is wrong).
         """
         src = self.hydro_source if source is None else source
+        options = dict(self.hydro_options)
         if isinstance(src, HydroData):
+            self._check_no_options(options, "a HydroData object")
             return src
         if src is None:
             raise ValueError(f"device {self.name!r} names no hydrodynamic database; pass one (HydroData, name or path)")
         path = Path(src)
+        if path.suffix in (".out", ".nc", ".h5") and not path.is_file():
+            raise FileNotFoundError(f"device {self.name!r}: no hydrodynamic database at {str(path)!r}")
         if path.suffix == ".out":
-            return HydroData.from_wamit(path)
+            return self._read(HydroData.from_wamit, path, options)
+        if path.suffix == ".h5":
+            return self._read(HydroData.from_bemio, path, options)
         if path.suffix == ".nc":
-            if not path.is_file():
-                raise FileNotFoundError(f"device {self.name!r}: no hydrodynamic database at {str(path)!r}")
-            try:
-                return HydroData.from_netcdf(path)
-            except ValueError:
-                return HydroData.from_capytaine(path)
+            if options or not is_wecss_database(path):
+                return self._read(HydroData.from_capytaine, path, options)
+            return HydroData.from_netcdf(path)
+        self._check_no_options(options, f"the shipped database {str(src)!r}")
         return load_hydro(str(src))
+
+    def _check_no_options(self, options: Mapping[str, Any], what: str) -> None:
+        if options:
+            raise ValueError(
+                f"device {self.name!r}: hydro_options {sorted(options)} apply to a BEM output file (Capytaine .nc, "
+                f"WAMIT .out, BEMIO .h5); the database is {what}"
+            )
+
+    def _read(self, reader: Any, path: Path, options: Mapping[str, Any]) -> HydroData:
+        """``reader(path, **options)`` with the options checked against the reader's keywords."""
+        import inspect
+
+        from ..hydro import read_bemio, read_capytaine, read_wamit
+
+        inner = {"from_capytaine": read_capytaine, "from_wamit": read_wamit, "from_bemio": read_bemio}[reader.__name__]
+        accepted = sorted({"repair", *(n for n in inspect.signature(inner).parameters if n not in ("source", "path"))})
+        unknown = sorted(set(options) - set(accepted))
+        if unknown:
+            raise DeviceSpecError(
+                f"device {self.name!r}: hydro_options {unknown} are not keywords of the reader of {path.name} "
+                f"(HydroData.{reader.__name__}); accepted: {', '.join(accepted)}"
+            )
+        return reader(path, **options)  # type: ignore[no-any-return]
 
     def coupling(self, hydro: str | Path | HydroData | None = None) -> HydroCoupling:
         """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass),

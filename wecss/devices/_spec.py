@@ -6,6 +6,9 @@ Spec layout (TOML; the same keys as a dict)::
     name = "m4-111"
     description = "..."
     hydro = "m4-111"            # shipped database name, or a path (relative to the spec file); optional
+    [hydro_options]             # keywords of the reader of a BEM output file (HydroData.from_capytaine, from_wamit,
+                                # from_bemio): center_of_mass = {body = [x, y, z]}, displaced_volume, added_mass_inf,
+                                # repair, ...; optional
     [assumptions]               # free text: what was assumed and why
     hinge_height = "0.25 m above still water ..."
     [[bodies]]                  # name, mass [kg], inertia [kg m^2] (3 diagonal values or 3x3 about the CoM),
@@ -35,7 +38,9 @@ from typing import Any
 
 from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Mooring, Multibody
 
-_TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos", "members", "moorings"}
+_TOP_KEYS = {
+    "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
+}  # fmt: skip
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
 _LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}
