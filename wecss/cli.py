@@ -223,7 +223,9 @@ def _plot(result: str, png: str | None) -> int:
     check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
     ds = open_result(result)
     if "scene" not in ds.attrs or "time" not in ds.dims:
-        raise ValueError(f"{result!r} is not a wecss result (no 'scene' attribute or 'time' dimension): nothing to plot")
+        raise ValueError(
+            f"{result!r} is not a wecss result (no 'scene' attribute or 'time' dimension): nothing to plot"
+        )
     import matplotlib.pyplot as plt
 
     plt.close(plot_timeseries(ds, picture))

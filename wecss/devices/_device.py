@@ -76,7 +76,13 @@ class Device:
         except ValueError as err:
             raise DeviceSpecError(str(err)) from None
         moorings = build_moorings(spec, model)
-        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings)
+        options = spec.get("hydro_options", {})
+        if not isinstance(options, Mapping):
+            raise DeviceSpecError(f"device {spec['name']!r}: hydro_options must be a table; got {options!r}")
+        return cls(
+            spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings,
+            dict(options),
+        )  # fmt: skip
 
     def member(self, name: str) -> Member:
         """The beam member of that name.
@@ -103,8 +109,8 @@ class Device:
         Raises
         ------
         ValueError
-            If neither the spec nor ``source`` names a database; if ``hydro_options`` are given for a database
-            that is not a BEM output file, or name keywords the reader does not take.
+            If neither the spec nor ``source`` names a database; if ``hydro_options`` are given for a shipped
+            database (not a BEM output file), or name keywords the reader does not take.
         FileNotFoundError
             If the file does not exist.
         HydroDataError
@@ -112,8 +118,7 @@ class Device:
         """
         src = self.hydro_source if source is None else source
         options = dict(self.hydro_options)
-        if isinstance(src, HydroData):
-            self._check_no_options(options, "a HydroData object")
+        if isinstance(src, HydroData):  # already read
             return src
         if src is None:
             raise ValueError(f"device {self.name!r} names no hydrodynamic database; pass one (HydroData, name or path)")
