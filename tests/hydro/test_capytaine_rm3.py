@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wecss.cli import main
 import wecss
+from wecss.cli import main
 from wecss.devices import Device, DeviceSpecError
 from wecss.hydro import HydroData, HydroDataWarning, read_capytaine
 
