@@ -67,7 +67,7 @@ def test_bad_values_are_refused_naming_the_file(tmp_path, change, message):
 
 
 def test_too_few_samples_are_refused(tmp_path):
-    path, table = _record(tmp_path, n=3)
+    path, _ = _record(tmp_path, n=3)
     with pytest.raises(SceneError, match=rf"sea\.file '{path}'.*the record has 3 samples; at least 4 are needed"):
         compile_scene(_scene(path, duration=0.1, ramp=0.0))
 
