@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import inspect
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -11,7 +12,7 @@ import numpy as np
 from scipy.linalg import eig
 
 from ..constants import GRAVITY
-from ..hydro import HydroData, is_wecss_database
+from ..hydro import HydroData, is_wecss_database, read_bemio, read_capytaine, read_wamit
 from ..hydro import load as load_hydro
 from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Mooring, Multibody, StaticModel
 from ._members import Member, read_members
@@ -125,13 +126,11 @@ class Device:
         path = Path(src)
         if path.suffix in (".out", ".nc", ".h5") and not path.is_file():
             raise FileNotFoundError(f"device {self.name!r}: no hydrodynamic database at {str(path)!r}")
-        if path.suffix == ".out":
-            return self._read(HydroData.from_wamit, path, options)
-        if path.suffix == ".h5":
-            return self._read(HydroData.from_bemio, path, options)
+        if path.suffix in (".out", ".h5"):
+            return self._read(path, options)
         if path.suffix == ".nc":
             if options or not is_wecss_database(path):
-                return self._read(HydroData.from_capytaine, path, options)
+                return self._read(path, options)
             return HydroData.from_netcdf(path)
         self._check_no_options(options, f"the shipped database {str(src)!r}")
         return load_hydro(str(src))
@@ -143,21 +142,24 @@ class Device:
                 f"WAMIT .out, BEMIO .h5); the database is {what}"
             )
 
-    def _read(self, reader: Any, path: Path, options: Mapping[str, Any]) -> HydroData:
-        """``reader(path, **options)`` with the options checked against the reader's keywords."""
-        import inspect
-
-        from ..hydro import read_bemio, read_capytaine, read_wamit
-
-        inner = {"from_capytaine": read_capytaine, "from_wamit": read_wamit, "from_bemio": read_bemio}[reader.__name__]
-        accepted = sorted({"repair", *(n for n in inspect.signature(inner).parameters if n not in ("source", "path"))})
+    def _read(self, path: Path, options: Mapping[str, Any]) -> HydroData:
+        """The BEM output file at ``path`` read by its reader (from its suffix) with ``options``, checked against
+        the reader's keywords."""
+        readers: dict[str, tuple[Callable[..., HydroData], Callable[..., Any]]] = {
+            ".nc": (HydroData.from_capytaine, read_capytaine),
+            ".out": (HydroData.from_wamit, read_wamit),
+            ".h5": (HydroData.from_bemio, read_bemio),
+        }
+        reader, inner = readers[path.suffix]
+        keywords = {n for n in inspect.signature(inner).parameters if n not in ("source", "path")}
+        accepted = sorted({"repair", *keywords})
         unknown = sorted(set(options) - set(accepted))
         if unknown:
             raise DeviceSpecError(
                 f"device {self.name!r}: hydro_options {unknown} are not keywords of the reader of {path.name} "
                 f"(HydroData.{reader.__name__}); accepted: {', '.join(accepted)}"
             )
-        return reader(path, **options)  # type: ignore[no-any-return]
+        return reader(path, **options)
 
     def coupling(self, hydro: str | Path | HydroData | None = None) -> HydroCoupling:
         """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass),
