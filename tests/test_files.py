@@ -109,16 +109,20 @@ def test_the_licence_file_states_the_licence_pyproject_declares():
 
 
 def test_the_tutorial_scene_and_spec_blocks_are_valid():
-    """docs/byo-bem.md: its spec block builds a device and its scene block reads as a Scene (issue 18)."""
+    """docs/byo-bem.md: its spec block builds a device, its scene block reads as a Scene and its
+    ``[hydro_options]`` block holds keywords of the Capytaine reader (issue 18)."""
+    import inspect
     import re
     import tomllib
 
     from wecss.devices import Device
+    from wecss.hydro import read_capytaine
     from wecss.sim import Scene
 
     root = Path(__file__).resolve().parents[1]
     blocks = re.findall(r"```toml\n(.*?)```", (root / "docs" / "byo-bem.md").read_text(), flags=re.S)
-    spec, scene = (tomllib.loads(b) for b in blocks)
+    options, spec, scene = (tomllib.loads(b) for b in blocks)
+    assert set(options["hydro_options"]) <= set(inspect.signature(read_capytaine).parameters)
     device = Device.from_spec(spec)  # refuses unknown or missing keys
     assert [p.name for p in device.ptos] == ["motor"]
     wamit = root.parent / "shared" / "data" / "wamit" / "wavestar" / "wavestar.out"

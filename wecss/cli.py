@@ -62,6 +62,12 @@ def _info(target: str | None) -> int:
         print(device.info())
         print(_modes(target))
         return 0
+    if path.suffix == ".nc" and path.is_file() and not hydro.is_wecss_database(path):
+        raise ValueError(
+            f"{target!r} is neither a wecss result nor a wecss database (no rho, g, water_depth, source, convention "
+            "attributes); for Capytaine output use HydroData.from_capytaine or name it as a device spec's hydro "
+            "(docs/byo-bem.md)"
+        )
     if path.suffix == ".nc" or path.exists():
         data = hydro.HydroData.from_netcdf(path)
     elif target in hydro.available():
@@ -90,10 +96,9 @@ def _modes(device: str) -> str:
 
 
 def _is_result(path: Path) -> bool:
-    import netCDF4
+    from .netcdf import global_attributes
 
-    with netCDF4.Dataset(path) as nc:
-        return "scene" in nc.ncattrs()
+    return "scene" in global_attributes(path)
 
 
 def _summary(ds: Any) -> str:
@@ -225,6 +230,10 @@ def _plot(result: str, png: str | None) -> int:
     picture = Path(png) if png else Path(result).with_suffix(".png")
     check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
     ds = open_result(result)
+    if "scene" not in ds.attrs or "time" not in ds.dims:
+        raise ValueError(
+            f"{result!r} is not a wecss result (no 'scene' attribute or 'time' dimension): nothing to plot"
+        )
     import matplotlib.pyplot as plt
 
     plt.close(plot_summary(ds, picture))

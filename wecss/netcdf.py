@@ -179,6 +179,52 @@ def _interrupts_held() -> Iterator[list[bool]]:
         raise KeyboardInterrupt
 
 
+class NetCDFFileError(ValueError):
+    """A file is not a readable netCDF file (empty, truncated, damaged or of another format); the message names
+    the file and says which."""
+
+
+#: The first bytes of netCDF files: classic (CDF 1, 2, 5) and netCDF-4 (HDF5).
+_SIGNATURES = (b"CDF\x01", b"CDF\x02", b"CDF\x05", b"\x89HDF\r\n\x1a\n")
+
+
+def unreadable(path: str | os.PathLike[str], err: BaseException) -> NetCDFFileError:
+    """The error for a netCDF file the library could not read: empty, not netCDF, or truncated / damaged."""
+    source = Path(path)
+    size = source.stat().st_size
+    with source.open("rb") as fh:
+        head = fh.read(8)
+    if size == 0:
+        what = "the file is empty (0 bytes)"
+    elif not any(head.startswith(sig) for sig in _SIGNATURES):
+        what = f"it is not a netCDF file (it starts with {head[:4]!r}, not a netCDF or HDF5 signature)"
+    else:
+        what = f"it is truncated or damaged ({size} bytes; the netCDF library says: {err})"
+    return NetCDFFileError(f"cannot read {str(source)!r}: {what}")
+
+
+def global_attributes(path: str | os.PathLike[str]) -> dict[str, object]:
+    """The global attributes of a netCDF file, without reading its data.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    NetCDFFileError
+        If it is not a readable netCDF file.
+    """
+    import netCDF4
+
+    source = Path(path)
+    if not source.is_file():
+        raise FileNotFoundError(f"no netCDF file at {str(source)!r}")
+    try:
+        with netCDF4.Dataset(source) as nc:
+            return {name: nc.getncattr(name) for name in nc.ncattrs()}
+    except (OSError, RuntimeError) as err:
+        raise unreadable(source, err) from None
+
+
 def read_netcdf(path: str | os.PathLike[str]) -> xr.Dataset:
     """Read a dataset written by :func:`write_netcdf` fully into memory (the file is closed on return).
 
@@ -186,10 +232,15 @@ def read_netcdf(path: str | os.PathLike[str]) -> xr.Dataset:
     ------
     FileNotFoundError
         If ``path`` does not exist.
+    NetCDFFileError
+        If it is not a readable netCDF file (empty, truncated, damaged, another format).
     """
     source = Path(path)
     if not source.is_file():
         raise FileNotFoundError(f"no netCDF file at {str(source)!r}")
-    with xr.open_dataset(source, engine="netcdf4") as ds:
-        loaded = ds.load()
+    try:
+        with xr.open_dataset(source, engine="netcdf4") as ds:
+            loaded = ds.load()
+    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
+        raise unreadable(source, err) from None
     return merge_complex(loaded)

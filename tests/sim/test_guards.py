@@ -11,12 +11,12 @@ from wecss.control import compile_scene
 from wecss.linear import exact_step, linearize
 from wecss.sim import SceneError, SimulationDiverged, simulate
 from wecss.sim._guards import (
-    RK4_LIMIT,
     fastest_mode,
     motion_notes,
     stiff_pto_hint,
     wave_notes,
 )
+from wecss.sim._rk4_check import largest_stable_step, rk4_radius, rk4_step_limit
 
 SHORT = {"duration": 4.0, "ramp": 1.0}
 
@@ -45,7 +45,7 @@ def test_fastest_mode_of_a_stiff_damper_is_its_decay_rate():
 
 def test_rk4_is_refused_for_a_stiff_pto_and_the_message_names_the_gain():
     compiled = _stiff("rk4")
-    assert fastest_mode(compiled) * compiled.dt > RK4_LIMIT
+    assert rk4_step_limit(compiled)[0] < compiled.dt
     with pytest.raises(SceneError, match=r"PTO gains \(pto_3: damping 1e\+04") as info:
         simulate(compiled)
     assert "reduce the PTO gain" in str(info.value)
@@ -193,3 +193,29 @@ def test_a_state_space_run_reports_its_fits_passivity():
     assert ds.attrs["radiation_fit_repair"] == str(report["repair"])
     if report["passivity_margin"] < 0 or not report["stable"]:  # the M4 111 default fit is (margin -3.9e-3)
         assert "radiation state-space fit: passivity margin" in ds.attrs["notes"]
+
+
+def test_rk4_region_boundary_on_the_axes():
+    """|R(z)| = 1 at z = -2.7853 (root of x^3/24 - x^2/6 + x/2 - 1 = 0) and z = +-2 sqrt(2) i (|R(iy)|^2 =
+    1 - y^6/72 + y^8/576): independent closed forms of RK4's region."""
+    real_root = float(next(r.real for r in np.roots([1 / 24, -1 / 6, 1 / 2, -1]) if abs(r.imag) < 1e-12))
+    radius = rk4_radius(np.array([np.pi, np.pi / 2]))
+    assert radius[0] == pytest.approx(real_root, abs=1e-3)
+    assert radius[1] == pytest.approx(2 * np.sqrt(2), abs=1e-3)
+    assert largest_stable_step(np.array([-10.0, -1.0 + 0j, 0.5])) == pytest.approx(real_root / 10, abs=1e-4)
+
+
+@pytest.mark.filterwarnings("ignore::wecss.hydro.HydroDataWarning")
+def test_rk4_check_takes_the_configurations_the_run_reaches():
+    """NOTC 10 kW in Hs 1 m, Tp 8 s at Tp/100: the equilibrium alone allows the step (|s| dt = 2.15, measured: the
+    run then diverged at t = 29 s); its cylinder's transmission grows as the arm turns, and the check refuses it."""
+    from tests.sim.test_catalogue_runs import _scene
+    from wecss.sim._rk4_check import RK4_MARGIN, _mechanical_eigenvalues
+
+    compiled = compile_scene(_scene("notc-10kw", "none", "rk4"))
+    at_rest = largest_stable_step(_mechanical_eigenvalues(compiled, compiled.q0)) / RK4_MARGIN
+    assert at_rest > compiled.dt  # the old check's view
+    limit, cause = rk4_step_limit(compiled)
+    assert limit < compiled.dt and "mechanical modes" in cause
+    with pytest.raises(SceneError, match=r"RK4 is unstable for this plant.*cylinder: damping 3.2e\+05"):
+        simulate(compiled)

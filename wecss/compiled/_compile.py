@@ -12,6 +12,7 @@ import dataclasses
 import functools
 import hashlib
 import json
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -168,12 +169,41 @@ def _device(scene: Scene) -> Device:
 
 def _read_columns(path: str, what: str) -> tuple[np.ndarray, np.ndarray]:
     try:
-        table = np.loadtxt(path, delimiter="," if path.endswith(".csv") else None, ndmin=2)
-    except ValueError as err:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below
+            table = np.loadtxt(path, delimiter="," if path.endswith(".csv") else None, ndmin=2)
+    except (ValueError, UnicodeDecodeError) as err:
         raise SceneError(f"sea.file {path!r}: cannot read two columns of numbers ({err})") from None
-    if table.shape[1] < 2:
+    if table.size == 0:
+        raise SceneError(f"sea.file {path!r}: holds no numbers; needs two columns ({what})")
+    if table.shape[1] != 2:
         raise SceneError(f"sea.file {path!r}: needs two columns ({what}); found {table.shape[1]}")
     return table[:, 0], table[:, 1]
+
+
+def _measured(sea: SeaState) -> wv.WaveComponents:
+    """The components of the scene's measured elevation record (``sea.file``).
+
+    Raises
+    ------
+    SceneError
+        Naming the file, for records that are not finite, uniformly sampled, at least 4 samples long, or
+        that are shorter than the run (their components would repeat the record).
+    """
+    assert sea.file is not None
+    t, eta = _read_columns(sea.file, "time [s], elevation [m]")
+    try:
+        waves = wv.from_elevation(t, eta, energy_threshold=sea.energy_threshold)
+    except ValueError as err:
+        raise SceneError(f"sea.file {sea.file!r} (time [s], elevation [m]): {err}") from None
+    span = t.size * (t[1] - t[0])  # the record's repeat period
+    if sea.duration_s > span * (1 + 1e-9):
+        raise SceneError(
+            f"sea.file {sea.file!r}: the record spans {span:.6g} s ({t.size} samples every {t[1] - t[0]:.6g} s) but "
+            f"sea.duration is {sea.duration_s:.6g} s; a record at least as long as the run is accepted (it is not "
+            f"repeated): give sea.duration <= {span:.6g} s or a longer record"
+        )
+    return waves
 
 
 def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None, wv.Spectrum | None]:
@@ -200,8 +230,7 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
         return wv.regular(sea.height, sea.period, direction=sea.direction), None  # type: ignore[arg-type]
     if sea.kind == "elevation":
         assert sea.file is not None
-        t, eta = _read_columns(sea.file, "time [s], elevation [m]")
-        return wv.from_elevation(t, eta, energy_threshold=sea.energy_threshold), None
+        return _measured(sea), None
     spectrum: wv.Spectrum
     if sea.kind == "tabulated":
         assert sea.file is not None

@@ -462,7 +462,7 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
 def _hydrostatic_into(
     p: Plant, rot: np.ndarray, pos: np.ndarray, disp: np.ndarray, restoring: np.ndarray, out: np.ndarray
 ) -> None:
-    """Gravity, buoyancy and the linear hydrostatic restoring force, world axes, into ``out`` (6n,) [N, N m]
+    """Gravity, buoyancy and the linear hydrostatic and mooring restoring force, world axes, into ``out`` (6n,) [N, N m]
     (``disp`` and ``restoring`` (n_h,) are scratch)."""
     hi = p.hydro_index
     rv = np.empty(3)
@@ -576,6 +576,12 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     # the memory force of the newest hydro velocity, through Bw
     matvec(w.bh, v, w.u)
     matvec(newest, w.u, w.load)
+    damping = p.mooring_damping  # the moorings' dampers (zero without moorings)
+    for i in range(damping.shape[0]):
+        s = 0.0
+        for k in range(damping.shape[1]):
+            s += damping[i, k] * w.u[k]
+        w.load[i] -= s
     matvec_t_add(w.bh, w.load, gen)
     # the controller's force, saturated at the PTO's force limit, the device spring, and the end stops
     matvec(w.gmat, v, w.xdot)

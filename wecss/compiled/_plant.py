@@ -37,7 +37,7 @@ class Plant(NamedTuple):
         active_mass : total_mass on the active rows and columns
     Hydrostatics
         hydro_index : (n_h,) Cartesian index of each hydro DOF
-        hydrostatic_stiffness : (n_h, n_h) about the centres of mass [N/m, N m/rad, ...]
+        hydrostatic_stiffness : (n_h, n_h) about the centres of mass, the moorings' springs included [N/m, N m/rad, ...]
         static_force : (6n,) gravity plus equilibrium buoyancy, world axes [N]
     PTOs (n_pto)
         pto_kind : a :class:`PtoKind`; pto_coordinate, pto_velocity : joint coordinate / velocity index (joint PTOs)
@@ -53,6 +53,9 @@ class Plant(NamedTuple):
     Joints
         joint_damping : (nv,) the joints' own viscous damping per generalised velocity, a device loss (generalised
         force -joint_damping * v) [N m s/rad or N s/m]
+    Moorings
+        mooring_damping : (n_h, n_h) the moorings' dampers on the hydro DOFs' velocities (world axes, about the
+        centres of mass) [N s/m, N m s/rad]; their springs are in ``hydrostatic_stiffness``
     """
 
     order: np.ndarray
@@ -88,6 +91,7 @@ class Plant(NamedTuple):
     pto_stop_stiffness: np.ndarray
     pto_stop_damping: np.ndarray
     joint_damping: np.ndarray
+    mooring_damping: np.ndarray
 
 
 def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
@@ -214,7 +218,8 @@ def build_plant(
     added = coupling.added_mass_inf if coupling is not None else 0.0
     if added_mass_correction is not None and coupling is not None:
         added = added + coupling.expand(added_mass_correction)
-    stiffness_h = coupling.stiffness[np.ix_(index, index)] if coupling is not None else np.zeros((0, 0))
+    stiffness_h = coupling.restoring[np.ix_(index, index)] if coupling is not None else np.zeros((0, 0))
+    mooring_h = coupling.mooring_damping[np.ix_(index, index)] if coupling is not None else np.zeros((0, 0))
     n_pto = len(ptos)
     total = rigid + added
     active = moving_rows(model)
@@ -232,4 +237,5 @@ def build_plant(
         pto_damping=np.zeros(n_pto) if damping is None else np.asarray(damping, dtype=float),
         pto_stiffness=np.zeros(n_pto) if stiffness is None else np.asarray(stiffness, dtype=float),
         joint_damping=model.joint_damping,
+        mooring_damping=np.ascontiguousarray(mooring_h),
     )

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import inspect
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -11,11 +12,11 @@ import numpy as np
 from scipy.linalg import eig
 
 from ..constants import GRAVITY
-from ..hydro import HydroData
+from ..hydro import HydroData, is_wecss_database, read_bemio, read_capytaine, read_wamit
 from ..hydro import load as load_hydro
-from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Multibody, StaticModel
+from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Mooring, Multibody, StaticModel
 from ._members import Member, read_members
-from ._spec import DeviceSpecError, build_model, read_spec
+from ._spec import DeviceSpecError, build_model, build_moorings, read_spec
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,6 +38,10 @@ class Device:
         The spec it was built from (for round trips into result attributes).
     members : tuple of Member
         Beam members for stress recovery (empty when the spec declares none).
+    moorings : tuple of Mooring
+        Linear moorings (empty when the spec declares none).
+    hydro_options : mapping
+        Keyword arguments of the reader of the ``hydro`` file (the spec's ``[hydro_options]``).
     """
 
     name: str
@@ -47,6 +52,8 @@ class Device:
     assumptions: Mapping[str, str]
     spec: Mapping[str, Any] = field(repr=False)
     members: tuple[Member, ...] = ()
+    moorings: tuple[Mooring, ...] = ()
+    hydro_options: Mapping[str, Any] = field(default_factory=dict)
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -62,14 +69,21 @@ class Device:
         spec, folder = read_spec(source)
         model, ptos = build_model(spec)
         hydro = spec.get("hydro")
-        if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out"))):
+        if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out", ".h5"))):
             hydro = str((folder / hydro).resolve())
         assumptions = {str(k): str(v) for k, v in spec.get("assumptions", {}).items()}
         try:
             members = read_members(spec["name"], list(spec.get("members", [])), list(model.body_names))
         except ValueError as err:
             raise DeviceSpecError(str(err)) from None
-        return cls(spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members)
+        moorings = build_moorings(spec, model)
+        options = spec.get("hydro_options", {})
+        if not isinstance(options, Mapping):
+            raise DeviceSpecError(f"device {spec['name']!r}: hydro_options must be a table; got {options!r}")
+        return cls(
+            spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings,
+            dict(options),
+        )  # fmt: skip
 
     def member(self, name: str) -> Member:
         """The beam member of that name.
@@ -88,31 +102,76 @@ class Device:
     def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:
         """The device's hydrodynamic database (``source`` overrides the spec's: a HydroData, name or path).
 
+        A BEM output file is read with the spec's ``[hydro_options]`` (keyword arguments of its reader:
+        ``HydroData.from_capytaine`` for a Capytaine ``.nc``, ``from_wamit`` for ``.out``, ``from_bemio`` for
+        ``.h5``). A ``.nc`` file is a wecss database when it carries the schema's ``rho`` and ``g`` attributes,
+        else Capytaine output (always, when options are given).
+
         Raises
         ------
         ValueError
-            If neither the spec nor ``source`` names a database.
+            If neither the spec nor ``source`` names a database; if ``hydro_options`` are given for a shipped
+            database (not a BEM output file), or name keywords the reader does not take.
+        FileNotFoundError
+            If the file does not exist.
+        HydroDataError
+            If the file is not a readable database (the message names the file and what is wrong).
         """
         src = self.hydro_source if source is None else source
-        if isinstance(src, HydroData):
+        options = dict(self.hydro_options)
+        if isinstance(src, HydroData):  # already read
             return src
         if src is None:
             raise ValueError(f"device {self.name!r} names no hydrodynamic database; pass one (HydroData, name or path)")
         path = Path(src)
-        if path.suffix == ".out":
-            return HydroData.from_wamit(path)
+        if path.suffix in (".out", ".nc", ".h5") and not path.is_file():
+            raise FileNotFoundError(f"device {self.name!r}: no hydrodynamic database at {str(path)!r}")
+        if path.suffix in (".out", ".h5"):
+            return self._read(path, options)
         if path.suffix == ".nc":
-            if not path.is_file():
-                raise FileNotFoundError(f"device {self.name!r}: no hydrodynamic database at {str(path)!r}")
-            try:
-                return HydroData.from_netcdf(path)
-            except ValueError:
-                return HydroData.from_capytaine(path)
+            if options or not is_wecss_database(path):
+                return self._read(path, options)
+            return HydroData.from_netcdf(path)
+        self._check_no_options(options, f"the shipped database {str(src)!r}")
         return load_hydro(str(src))
 
+    def _check_no_options(self, options: Mapping[str, Any], what: str) -> None:
+        if options:
+            raise ValueError(
+                f"device {self.name!r}: hydro_options {sorted(options)} apply to a BEM output file (Capytaine .nc, "
+                f"WAMIT .out, BEMIO .h5); the database is {what}"
+            )
+
+    def _read(self, path: Path, options: Mapping[str, Any]) -> HydroData:
+        """The BEM output file at ``path`` read by its reader (from its suffix) with ``options``, checked against
+        the reader's keywords."""
+        readers: dict[str, tuple[Callable[..., HydroData], Callable[..., Any]]] = {
+            ".nc": (HydroData.from_capytaine, read_capytaine),
+            ".out": (HydroData.from_wamit, read_wamit),
+            ".h5": (HydroData.from_bemio, read_bemio),
+        }
+        reader, inner = readers[path.suffix]
+        keywords = {n for n in inspect.signature(inner).parameters if n not in ("source", "path")}
+        accepted = sorted({"repair", *keywords})
+        unknown = sorted(set(options) - set(accepted))
+        if unknown:
+            raise DeviceSpecError(
+                f"device {self.name!r}: hydro_options {unknown} are not keywords of the reader of {path.name} "
+                f"(HydroData.{reader.__name__}); accepted: {', '.join(accepted)}"
+            )
+        return reader(path, **options)
+
     def coupling(self, hydro: str | Path | HydroData | None = None) -> HydroCoupling:
-        """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass)."""
-        return HydroCoupling.from_hydro(self.model, self.hydro(hydro))
+        """The hydrodynamic database mapped onto the model's Cartesian coordinates (at the bodies' centres of mass),
+        with the device's moorings.
+
+        Raises
+        ------
+        ValueError
+            If the model's bodies do not match the database's, or a mooring holds a DOF the database has no data
+            for.
+        """
+        return HydroCoupling.from_hydro(self.model, self.hydro(hydro), self.moorings)
 
     def statics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> StaticModel:
         """Gravity, buoyancy, hydrostatics and PTO springs at rest."""
@@ -173,6 +232,12 @@ class Device:
                 f"joint {p.joint}" if isinstance(p, JointPTO) else f"{p.body_a or 'ground'} -> {p.body_b or 'ground'}"
             )
             lines.append(f"  {p.name:10s} {where}: damping {p.damping:g}, stiffness {p.stiffness:g}")
+        if self.moorings:
+            lines.append("moorings:")
+            for mooring in self.moorings:
+                parts = [f"{d} {v:g}" for d, v in mooring.stiffness.items()]
+                parts += [f"{d} damping {v:g}" for d, v in mooring.damping.items()]
+                lines.append(f"  {mooring.body:10s} {', '.join(parts)} [SI]")
         try:
             result = self.natural_periods(hydro)
         except (ValueError, FileNotFoundError) as err:

@@ -6,6 +6,9 @@ Spec layout (TOML; the same keys as a dict)::
     name = "m4-111"
     description = "..."
     hydro = "m4-111"            # shipped database name, or a path (relative to the spec file); optional
+    [hydro_options]             # keywords of the reader of a BEM output file (HydroData.from_capytaine, from_wamit,
+                                # from_bemio): center_of_mass = {body = [x, y, z]}, displaced_volume, added_mass_inf,
+                                # repair, ...; optional
     [assumptions]               # free text: what was assumed and why
     hinge_height = "0.25 m above still water ..."
     [[bodies]]                  # name, mass [kg], inertia [kg m^2] (3 diagonal values or 3x3 about the CoM),
@@ -22,6 +25,9 @@ Spec layout (TOML; the same keys as a dict)::
                                 # {kind = "box", width, height, thickness} | {kind = "given", area, iy, iz, wy, wz, wt},
                                 # hot_spots = [{name, at [m from start], y, z [m on the section], scf}],
                                 # body_mass = "centre" (default) | "along" (the body's mass spread along the member)
+    [[moorings]]                # a linear mooring (optional): body, stiffness = {Surge = k, ...} [N/m, N m/rad],
+    ...                         # damping = {Surge = c, ...} [N s/m, N m s/rad], about the body's centre of mass
+                                # (world axes), slack in the reference configuration (wecss.multibody.Mooring)
 """
 
 from __future__ import annotations
@@ -31,9 +37,11 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Multibody
+from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Mooring, Multibody
 
-_TOP_KEYS = {"name", "description", "hydro", "assumptions", "bodies", "joints", "ptos", "members"}
+_TOP_KEYS = {
+    "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
+}  # fmt: skip
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
 _LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}
@@ -140,3 +148,26 @@ def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | Ac
     if len(set(names)) != len(names):
         raise DeviceSpecError(f"device {name!r}: duplicate PTO names {names}")
     return model, tuple(ptos)
+
+
+def build_moorings(spec: Mapping[str, Any], model: Multibody) -> tuple[Mooring, ...]:
+    """The spec's ``[[moorings]]`` (empty when it has none).
+
+    Raises
+    ------
+    DeviceSpecError
+        On unknown or missing keys, unknown bodies or DOFs, bad values (the message says which entry).
+    """
+    entries = spec.get("moorings", [])
+    if not isinstance(entries, list):
+        raise DeviceSpecError(f"device {spec['name']!r}: moorings must be a list of tables ([[moorings]])")
+    out = []
+    for k, entry in enumerate(entries):
+        where = f"device {spec['name']!r}, moorings[{k}]"
+        try:
+            mooring = Mooring.from_spec(entry)
+            model.body(mooring.body)
+        except (TypeError, ValueError) as err:
+            raise DeviceSpecError(f"{where}: {err}") from None
+        out.append(mooring)
+    return tuple(out)

@@ -4,6 +4,7 @@ from ._catalogue import DATA_DIR as DATA_DIR
 from ._catalogue import available as available
 from ._catalogue import load as load
 from ._hydrodata import HydroData as HydroData
+from ._hydrodata import is_wecss_database as is_wecss_database
 from ._interactions import without_body_interactions as without_body_interactions
 from ._irregular import IrregularFrequencyReport as IrregularFrequencyReport
 from ._irregular import find_irregular_frequencies as find_irregular_frequencies

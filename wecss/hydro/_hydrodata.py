@@ -12,14 +12,35 @@ import numpy as np
 import xarray as xr
 
 from ..attributes import apply_attrs
-from ..netcdf import read_netcdf, write_netcdf
+from ..netcdf import global_attributes, read_netcdf, write_netcdf
 from ._repair import repair as _repair
-from ._schema import split_dof
+from ._schema import REQUIRED_ATTRS, split_dof
 from ._select import select as _select
 from ._transform import move_reference_point, move_to_center_of_mass
-from ._validate import HydroDataWarning, validate
+from ._validate import HydroDataError, HydroDataWarning, validate
 
 PathLike = str | os.PathLike[str]
+
+MOST_FREQUENCIES: float = 0.5
+"""A repair that replaces or drops more than this share of the frequencies is warned about a second time."""
+
+LARGE_A_INF_CHANGE: float = 0.1
+"""A repair that changes a diagonal A_inf entry by more than this fraction is warned about a second time."""
+
+
+def is_wecss_database(path: PathLike) -> bool:
+    """True when the netCDF file at ``path`` carries the global attributes of a wecss hydrodynamic database
+    (``REQUIRED_ATTRS``: rho, g, water depth, source, convention); Capytaine's own files store rho and g as
+    variables instead.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    wecss.netcdf.NetCDFFileError
+        If it is not a readable netCDF file.
+    """
+    return all(name in global_attributes(path) for name in REQUIRED_ATTRS)
 
 
 class HydroData:
@@ -52,23 +73,46 @@ class HydroData:
     # --- named constructors -------------------------------------------------------------------
     @classmethod
     def from_netcdf(cls, path: PathLike) -> HydroData:
-        """Read a database written by :meth:`to_netcdf`."""
-        return cls(read_netcdf(path))
+        """Read a database written by :meth:`to_netcdf`.
+
+        Raises
+        ------
+        FileNotFoundError
+            If ``path`` does not exist.
+        wecss.netcdf.NetCDFFileError
+            If it is not a readable netCDF file (empty, truncated, damaged).
+        HydroDataError
+            If it does not follow the schema (the message names the file).
+        """
+        ds = read_netcdf(path)
+        try:
+            return cls(ds)
+        except HydroDataError as err:
+            raise HydroDataError(f"{str(path)!r} is not a valid wecss hydrodynamic database: {err}") from None
 
     @classmethod
-    def from_capytaine(cls, source: PathLike | xr.Dataset, *, repair: bool = True, **kwargs: Any) -> HydroData:
+    def from_capytaine(cls, source: PathLike | xr.Dataset, *, repair: bool | str = True, **kwargs: Any) -> HydroData:
         """Read Capytaine results (a netCDF file or the dataset of ``capytaine.assemble_dataset``).
 
-        With ``repair`` (default) the data are symmetrised and cleaned of irregular-frequency artefacts, with a
-        :class:`HydroDataWarning` saying what changed (see :func:`wecss.hydro.repair`). Other keyword arguments go
-        to :func:`wecss.hydro.read_capytaine`.
+        ``repair``: True or ``"interpolate"`` (default) symmetrises the data and removes irregular-frequency
+        artefacts, interpolating inside the range and dropping them at its ends; ``"drop"`` drops every flagged
+        frequency; False keeps the data as read (see :func:`wecss.hydro.repair`). A :class:`HydroDataWarning`
+        says what changed, and a second one when the repair replaced or dropped most frequencies
+        (:data:`MOST_FREQUENCIES`) or changed a diagonal A_inf entry by more than :data:`LARGE_A_INF_CHANGE`.
+        Other keyword arguments go to :func:`wecss.hydro.read_capytaine`.
+
+        Raises
+        ------
+        HydroDataError
+            If the data, repaired as asked, are not valid (the message says which repair was applied and which
+            to choose instead).
         """
         from .readers.capytaine import read_capytaine
 
         return cls._repaired(read_capytaine(source, **kwargs), repair)
 
     @classmethod
-    def from_wamit(cls, path: PathLike, *, repair: bool = True, **kwargs: Any) -> HydroData:
+    def from_wamit(cls, path: PathLike, *, repair: bool | str = True, **kwargs: Any) -> HydroData:
         """Read WAMIT output (``.out``, and the numeric ``.1``/``.3``/``.hst`` files beside it).
 
         ``repair`` as in :meth:`from_capytaine`; other keyword arguments go to :func:`wecss.hydro.read_wamit`.
@@ -78,7 +122,7 @@ class HydroData:
         return cls._repaired(read_wamit(path, **kwargs), repair)
 
     @classmethod
-    def from_bemio(cls, path: PathLike, *, repair: bool = True, **kwargs: Any) -> HydroData:
+    def from_bemio(cls, path: PathLike, *, repair: bool | str = True, **kwargs: Any) -> HydroData:
         """Read a BEMIO / WEC-Sim ``.h5`` file (needs the ``h5`` extra: ``pip install "wecss[h5]"``).
 
         ``repair`` as in :meth:`from_capytaine`; other keyword arguments go to :func:`wecss.hydro.read_bemio`.
@@ -88,13 +132,48 @@ class HydroData:
         return cls._repaired(read_bemio(path, **kwargs), repair)
 
     @classmethod
-    def _repaired(cls, ds: xr.Dataset, repair: bool) -> HydroData:
-        if not repair:
+    def _repaired(cls, ds: xr.Dataset, repair: bool | str) -> HydroData:
+        choices = (True, False, "interpolate", "drop")
+        if not any(repair is c or (isinstance(c, str) and repair == c) for c in choices):
+            raise ValueError(f"repair must be True, False, 'interpolate' or 'drop'; got {repair!r}")
+        source = ds.attrs.get("source", "hydrodynamic data")
+        if repair is False:
             return cls(ds)
-        fixed, report = _repair(ds)
+        method = "interpolate" if repair is True else str(repair)
+        try:
+            fixed, report = _repair(ds, method=method)
+        except ValueError as err:
+            raise HydroDataError(f"{source}: the repair ({method!r}) failed: {err}; read with repair=False") from None
         if report.changed:
-            warnings.warn(f"{ds.attrs.get('source', 'hydrodynamic data')}: {report}", HydroDataWarning, stacklevel=3)
-        return cls(fixed)
+            warnings.warn(f"{source}: {report}", HydroDataWarning, stacklevel=3)
+        loud = []
+        if report.share_changed > MOST_FREQUENCIES:
+            kept = fixed.omega.values
+            loud.append(
+                f"the repair replaced or dropped {len(report.irregular.omega)} of {report.n_omega} frequencies "
+                f"({report.share_changed:.0%}); the database keeps {kept.size}, {kept[0]:.4g}-{kept[-1]:.4g} rad/s"
+            )
+        if report.added_mass_inf_change > LARGE_A_INF_CHANGE:
+            loud.append(
+                f"A_inf changed by up to {report.added_mass_inf_change:.0%} of a diagonal entry "
+                f"({fixed.attrs.get('added_mass_inf_source', '')})"
+            )
+        if loud:
+            warnings.warn(
+                f"{source}: check these data before use: {'; '.join(loud)}. Compare repair='drop' or give "
+                "added_mass_inf, or recompute the BEM data (with a lid against irregular frequencies)",
+                HydroDataWarning,
+                stacklevel=3,
+            )
+        try:
+            return cls(fixed)
+        except HydroDataError as err:
+            other = "'drop' (drop every flagged frequency)" if method == "interpolate" else "'interpolate'"
+            raise HydroDataError(
+                f"{source}: after the repair {method!r} ({report}) the data are still not valid: {err}. "
+                f"Choose repair={other}, or read with repair=False and repair with wecss.hydro.repair / "
+                "remove_irregular_frequencies"
+            ) from None
 
     # --- output --------------------------------------------------------------------------------
     def to_netcdf(self, path: PathLike) -> Path:

@@ -192,26 +192,36 @@ def remove_irregular_frequencies(
     """
     if method not in ("interpolate", "drop"):
         raise ValueError(f"method must be 'interpolate' or 'drop'; got {method!r}")
-    flags = _flags(ds)
-    bad = np.any(flags, axis=1)
     bands = tuple(find_irregular_frequencies(ds))
-    report = IrregularFrequencyReport(method, tuple(float(w) for w in ds.omega.values[bad]), bands)
+    original = ds.omega.values
+    # the flags are relative to each entry's peak over the frequencies kept: dropping a band that held the peak
+    # (a wide negative band at the top of the range) can expose more, so repeat until nothing more is dropped
+    flagged: set[float] = set()
+    dropped: list[float] = []
+    for _ in range(original.size):
+        bad = np.any(_flags(ds), axis=1)
+        flagged.update(float(w) for w in ds.omega.values[bad])
+        if not np.any(bad):
+            break
+        good_index = np.flatnonzero(~bad)
+        if good_index.size < 2:
+            raise ValueError(
+                f"fewer than two of {original.size} frequencies are free of artefacts; cannot clean this dataset"
+            )
+        # "drop" removes every flagged frequency; "interpolate" only those beyond the last (before the first)
+        # clean one, which would need extrapolation
+        keep = good_index if method == "drop" else np.arange(good_index[0], good_index[-1] + 1)
+        if keep.size == bad.size:
+            break
+        dropped.extend(float(w) for w in np.delete(ds.omega.values, keep))
+        ds = ds.isel(omega=keep)
+    omega = tuple(w for w in original if float(w) in flagged or float(w) in set(dropped))
+    if method == "drop":
+        return ds.copy(), IrregularFrequencyReport(method, tuple(float(w) for w in omega), bands)
+    report = IrregularFrequencyReport(method, tuple(float(w) for w in omega), bands, tuple(sorted(dropped)))
     if not np.any(bad):
         return ds.copy(), report
     good_omega = ds.omega.values[~bad]
-    if good_omega.size < 2:
-        raise ValueError("fewer than two frequencies are free of artefacts; cannot clean this dataset")
-    if method == "drop":
-        return ds.isel(omega=np.flatnonzero(~bad)), report
-    # flagged frequencies outside the clean range cannot be interpolated: they are dropped, and said so
-    good_index = np.flatnonzero(~bad)
-    keep = np.arange(good_index[0], good_index[-1] + 1)
-    if keep.size < bad.size:
-        dropped = tuple(float(w) for w in np.delete(ds.omega.values, keep))
-        report = IrregularFrequencyReport(method, report.omega, bands, dropped)
-        ds, bad = ds.isel(omega=keep), bad[keep]
-        if not np.any(bad):
-            return ds, report
     from scipy.interpolate import PchipInterpolator
 
     out = ds.copy()

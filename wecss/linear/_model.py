@@ -9,8 +9,9 @@ force on every hydro DOF (world axes) and a PTO force per PTO added to the linea
     M xi_ddot = -K xi - C xi_dot + Bw' (F_exc - C_r r) + G' f_pto,     r_dot = A_r r + B_r Bw xi_dot
 
 with M = M*(q0) (A_inf with the simulator's consistency correction), K the static stiffness with its geometric
-part and the controller's linear stiffness, C = G' diag(c) G + diag(c_j) the controller's linear damping and the
-joints' own losses (``Joint.damping``), Bw the world-frame Jacobian of the hydro DOFs and G the PTO transmissions
+part, the moorings' springs and the controller's linear stiffness, C = G' diag(c) G + diag(c_j) + Bw' C_m Bw the
+controller's linear damping, the joints' own losses (``Joint.damping``) and the moorings' dampers C_m, Bw the
+world-frame Jacobian of the hydro DOFs and G the PTO transmissions
 at q0. The gyroscopic and Bdot terms are quadratic in the
 velocities and vanish at equilibrium.
 
@@ -82,9 +83,9 @@ class LinearModel:
     Attributes
     ----------
     mass, damping, stiffness : ndarray (nv, nv)
-        M* (with the A_inf of the scene's radiation memory), the linear damping C (the controller's PTO damping
-        and the joints' own losses) and the static
-        stiffness K with its geometric part and the controller's stiffness [SI per generalised coordinate].
+        M* (with the A_inf of the scene's radiation memory), the linear damping C (the controller's PTO damping,
+        the joints' own losses and the moorings' dampers) and the static stiffness K with its geometric part, the
+        moorings' springs and the controller's stiffness [SI per generalised coordinate].
     database_mass : ndarray (nv, nv)
         M* with the database's own A_inf, which the exact frequency response completes with A(omega) - A_inf.
     hydro_jacobian : ndarray (n_h, nv)
@@ -490,7 +491,8 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
     # the database's own A_inf: the exact frequency response adds A(omega) - A_inf (no memory-model correction)
     database = b.T @ (body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf) @ b
     stiffness = compiled.stiffness  # device springs and the controller's stiffness included
-    damping = g.T @ np.diag(p.pto_damping) @ g + np.diag(p.joint_damping)  # the joints' own losses too
+    # the joints' own losses and the moorings' dampers too
+    damping = g.T @ np.diag(p.pto_damping) @ g + np.diag(p.joint_damping) + bw.T @ p.mooring_damping @ bw
     ds = compiled.hydro.dataset
     hydro = HydroResponse(
         compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values

@@ -11,6 +11,8 @@ from ._kinematics import difference as difference
 from ._kinematics import integrate as integrate
 from ._kinematics import kinematics as kinematics
 from ._loads import joint_reactions as joint_reactions
+from ._mooring import Mooring as Mooring
+from ._mooring import mooring_matrices as mooring_matrices
 from ._pto import PTO as PTO
 from ._pto import ActuatorPTO as ActuatorPTO
 from ._pto import JointPTO as JointPTO

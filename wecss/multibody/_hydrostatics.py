@@ -4,6 +4,7 @@ The coefficients are moved to each model body's centre of mass first (DESIGN.md)
 distribution decides the reference, whatever the database assumed. Hydrostatics follow DESIGN.md: gravity at
 each centre of mass, the equilibrium buoyancy rho g V as a constant upward force at the centre of mass, and the
 linear hydrostatic stiffness (about the centre of mass) on the displacement from the database's reference pose.
+A linear mooring (``_mooring``) acts on the same displacement and on the hydro DOFs' velocities.
 """
 
 from __future__ import annotations
@@ -12,8 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..constants import RIGID_BODY_DOFS
 from ..hydro import HydroData, dof_index, split_dof
 from ._kinematics import KinematicState
+from ._mooring import Mooring, mooring_matrices
 from ._se3 import so3_log
 from ._tree import Multibody
 
@@ -32,6 +35,10 @@ class HydroCoupling:
         A_inf [kg, kg m, kg m^2] and the hydrostatic stiffness in Cartesian coordinates (zeros where no data).
     buoyancy : ndarray (6n,)
         Constant equilibrium buoyancy rho g V (world z) at each hydro body's centre of mass [N].
+    mooring_stiffness, mooring_damping : ndarray (6n, 6n)
+        The moorings' springs [N/m, N m/rad] and dampers [N s/m, N m s/rad] (zeros without a mooring); they act
+        only on hydro DOFs.
+    moorings : tuple of Mooring
     """
 
     hydro: HydroData
@@ -39,15 +46,24 @@ class HydroCoupling:
     added_mass_inf: np.ndarray
     stiffness: np.ndarray
     buoyancy: np.ndarray
+    mooring_stiffness: np.ndarray
+    mooring_damping: np.ndarray
+    moorings: tuple[Mooring, ...] = ()
+
+    @property
+    def restoring(self) -> np.ndarray:
+        """Hydrostatic plus mooring stiffness (6n, 6n) on the displacement from the reference pose [SI]."""
+        return self.stiffness + self.mooring_stiffness
 
     @classmethod
-    def from_hydro(cls, model: Multibody, hydro: HydroData) -> HydroCoupling:
-        """Map ``hydro`` onto ``model`` through each body's ``hydro_body``.
+    def from_hydro(cls, model: Multibody, hydro: HydroData, moorings: tuple[Mooring, ...] = ()) -> HydroCoupling:
+        """Map ``hydro`` onto ``model`` through each body's ``hydro_body``, with ``moorings`` on its bodies.
 
         Raises
         ------
         ValueError
-            If a body names a hydro body that is not in the database, or two bodies name the same one.
+            If a body names a hydro body that is not in the database, or two bodies name the same one; if a
+            mooring holds a DOF the database has no data for (it acts on the hydro DOFs only).
         """
         pairs = [(i, b.hydro_body) for i, b in enumerate(model.bodies) if b.hydro_body is not None]
         names = [h for _, h in pairs]
@@ -71,7 +87,16 @@ class HydroCoupling:
         buoyancy = np.zeros(n6)
         for h, i in of_hydro.items():
             buoyancy[6 * i + 2] = moved.rho * moved.g * float(ds.displaced_volume.sel(body=h))
-        return cls(moved, index, 0.5 * (added + added.T), stiffness, buoyancy)
+        mooring_k, mooring_c = mooring_matrices(model, tuple(moorings))
+        held = np.flatnonzero(np.diag(mooring_k) + np.diag(mooring_c))
+        outside = [k for k in held if k not in set(index.tolist())]
+        if outside:
+            names = [f"{model.body_names[k // 6]} {RIGID_BODY_DOFS[k % 6]}" for k in outside]
+            raise ValueError(
+                f"mooring on {', '.join(names)}: the hydrodynamic database has no such DOF (a mooring acts on the "
+                f"database's DOFs: {', '.join(moved.dofs)})"
+            )
+        return cls(moved, index, 0.5 * (added + added.T), stiffness, buoyancy, mooring_k, mooring_c, tuple(moorings))
 
     def expand(self, matrix: np.ndarray) -> np.ndarray:
         """A (..., ndof, ndof) matrix over the hydro DOFs as (..., 6n, 6n) Cartesian (zeros elsewhere)."""
@@ -89,8 +114,9 @@ class HydroCoupling:
         return out
 
     def hydrostatic_force(self, model: Multibody, state: KinematicState) -> np.ndarray:
-        """Buoyancy plus linear hydrostatic restoring force (world forces, body-frame moments) [N, N m]."""
-        world = self.buoyancy - self.stiffness @ self.displacement(model, state)
+        """Buoyancy plus linear hydrostatic and mooring restoring force (world forces, body-frame moments)
+        [N, N m]."""
+        world = self.buoyancy - self.restoring @ self.displacement(model, state)
         return to_body_moments(world, state)
 
 

@@ -1,6 +1,7 @@
 """Validity guards of a run, with stated thresholds: the step against the fastest mode of the plant with its PTO
-gains (RK4 refused past its stability limit, a coarse step noted), the sea's steepness and height against the bodies'
-size, the bodies' motion amplitudes against their size and a drift of unrestrained bodies (notes in the result).
+gains (RK4 refused outside its stability region, see ``_rk4_check``; a coarse step noted), the sea's steepness and
+height against the bodies' size, the bodies' motion amplitudes against their size and a drift of unrestrained bodies
+(notes in the result).
 
 The body size is the cube root of its displaced volume V^(1/3) [m] (from the hydrodynamic database). Linear
 hydrodynamics (the database's coefficients, computed for small motions about the equilibrium) lose accuracy for
@@ -14,12 +15,9 @@ import numpy as np
 
 from ..compiled import CompiledScene, poses
 from ..linear import equilibrium_maps
-from ..scene import SceneError
 from ..waves import wavenumber
+from ._rk4_check import check_rk4 as check_rk4_region
 
-#: RK4's stability limit used on |s| dt of the fastest mode (the method's region reaches 2.78 on the negative real
-#: axis and 2.83 on the imaginary axis; 2.5 keeps a margin, as for the radiation states).
-RK4_LIMIT = 2.5
 #: Fewer steps than this per period 2 pi / |s| of the fastest mode are noted (an accurate step resolves it).
 GOOD_STEPS_PER_MODE = 20
 #: Significant wave height over the deep-water wavelength at the peak period above which a note is written
@@ -63,23 +61,15 @@ def _gains(compiled: CompiledScene) -> str:
 
 
 def check_rk4(compiled: CompiledScene) -> None:
-    """Refuse RK4 when the fastest mode with the PTO gains passes its stability limit.
+    """Refuse RK4 when the step passes its stability limit for the plant over the configurations the run may
+    reach (see ``_rk4_check``).
 
     Raises
     ------
     SceneError
-        If |s| dt > RK4_LIMIT, naming the PTO gains when they set the mode.
+        Naming the PTO gains when there are any.
     """
-    rate = fastest_mode(compiled)
-    dt = compiled.dt
-    if rate * dt <= RK4_LIMIT:
-        return
-    gains = _gains(compiled)
-    cause = f"the PTO gains ({gains} [SI]) are the likely cause; " if gains else ""
-    raise SceneError(
-        f"RK4 is unstable for this plant: its fastest mode |s| = {rate:.4g} rad/s needs dt < {RK4_LIMIT / rate:.3g} s "
-        f"(given {dt:.3g} s); {cause}reduce the PTO gain, use 'beeman' or give a smaller solver.dt"
-    )
+    check_rk4_region(compiled, _gains(compiled))
 
 
 def stiff_pto_hint(compiled: CompiledScene) -> str:
@@ -196,14 +186,38 @@ def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
             f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
             f"{', '.join(big)}; linear hydrodynamics lose accuracy"
         )
-    drift = np.linalg.norm(tail - head, axis=-1)
+    # only the horizontal directions nothing restores (a mooring or a joint to the ground holds the others)
+    drift = np.linalg.norm((tail - head) * unrestrained_directions(compiled), axis=-1)
     far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
     if far:
         notes.append(
             f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run "
-            f"({', '.join(far)}); nothing restores it (the device has no mooring)"
+            f"({', '.join(far)}); nothing restores it: give the device a linear mooring ([[moorings]] in its "
+            "spec, docs/byo-bem.md) or a solver.translation_bound"
         )
     return notes
+
+
+#: Singular values of the static stiffness below this fraction of the largest are free directions.
+FREE_DIRECTION_TOL = 1e-9
+
+
+def unrestrained_directions(compiled: CompiledScene) -> np.ndarray:
+    """(n_body, 2): 1.0 where a body's centre of mass can move along world x (column 0) or y (column 1) without a
+    restoring force (along a null vector of the static stiffness, moorings and PTO springs included), else 0.0."""
+    b, _, _, _ = equilibrium_maps(compiled)
+    k = compiled.stiffness
+    n = b.shape[0] // 6
+    if k.size == 0:
+        return np.zeros((n, 2))
+    _, values, vt = np.linalg.svd(k)
+    free = vt[values <= FREE_DIRECTION_TOL * max(float(values[0]), 1e-300)]
+    motion = b @ free.T  # Cartesian motion along each free direction (6n, n_free)
+    out = np.zeros((n, 2))
+    for i in range(n):
+        for axis in range(2):
+            out[i, axis] = float(np.any(np.abs(motion[6 * i + axis]) > 1e-9))
+    return out
 
 
 #: The default translation bound: this multiple of the largest body size V^(1/3).

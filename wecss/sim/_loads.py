@@ -19,7 +19,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compiled import CompiledScene, PtoKind, end_stop_force, hydrostatic_force, kinematics, world_jacobian
+from ..compiled import (
+    CompiledScene,
+    PtoKind,
+    end_stop_force,
+    hydro_velocity,
+    hydrostatic_force,
+    kinematics,
+    world_jacobian,
+)
 from ..multibody import joint_reactions
 from ._sections import BodyHistory, section_loads
 
@@ -138,12 +146,15 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
     carriers = sorted({model.body_names.index(m.body) for m in members if m.hot_spots})
     gathered: dict[int, list[list[np.ndarray]]] = {i: [] for i in carriers}
     gravity = np.array([0.0, 0.0, -compiled.hydro.g])
+    moored = bool(np.any(p.mooring_damping))
     worst, scale = 0.0, 0.0
     for t in range(n_t):
         qq, vv = np.ascontiguousarray(q[t]), np.ascontiguousarray(v[t])
         rot, pos, b, bdot, omega = kinematics(p, qq, vv)
         own = hydrostatic_force(p, rot, pos)  # everything but the joints and the PTOs, world axes
         own[p.hydro_index] += hydro[t]
+        if moored:  # the moorings' dampers (their springs are in the hydrostatic force)
+            own[p.hydro_index] -= p.mooring_damping @ hydro_velocity(p, qq, vv)
         x, xd, f = pto[0][t], pto[1][t], pto[2][t]
         force = f + end_stop_force(p, x, xd) if n_pto else np.zeros(0)
         cart, out.pto_body_force[t], out.pto_body_moment[t], pto_bodies, pto_points = _pto_cartesian(

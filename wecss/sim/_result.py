@@ -334,6 +334,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "notes": "; ".join(_notes(compiled, report, record.q)) or "none",
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
+        "moorings": json.dumps([m.to_dict() for m in compiled.device.moorings]) if compiled.device.moorings else "none",
     }
     attrs.update({f"controller_{k}": v for k, v in report.items()})
     attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)

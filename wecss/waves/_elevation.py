@@ -228,20 +228,55 @@ def irregular(
     return drop_negligible(components, energy_threshold)
 
 
+MIN_ELEVATION_SAMPLES: int = 4
+"""Fewest samples of a measured elevation record."""
+
+
 def from_elevation(
     time: np.ndarray, elevation: np.ndarray, *, energy_threshold: float = DEFAULT_ENERGY_THRESHOLD
 ) -> WaveComponents:
     """Components of a measured elevation record (uniform sampling), by FFT: the record repeats with its length.
 
-    The mean is removed. Raises ValueError on non-uniform or too short records.
+    The mean is removed.
+
+    Parameters
+    ----------
+    time : (n,)
+        Sample times [s], increasing with a constant step (relative spread below 1e-6).
+    elevation : (n,)
+        Free-surface elevation [m], finite.
+
+    Raises
+    ------
+    ValueError
+        On records of other shapes or fewer than MIN_ELEVATION_SAMPLES samples, non-finite values, or times that do
+        not increase with one step (the message gives what was received).
     """
     time = np.asarray(time, dtype=float)
     elevation = np.asarray(elevation, dtype=float)
-    if time.ndim != 1 or time.shape != elevation.shape or time.size < 4:
-        raise ValueError("time and elevation must be 1-D of one length >= 4")
+    if time.ndim != 1 or time.shape != elevation.shape:
+        raise ValueError(f"time and elevation must be 1-D of one length; got shapes {time.shape} and {elevation.shape}")
+    if time.size < MIN_ELEVATION_SAMPLES:
+        raise ValueError(f"the record has {time.size} samples; at least {MIN_ELEVATION_SAMPLES} are needed")
+    for label, values in (("time", time), ("elevation", elevation)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            rows = ", ".join(str(int(k) + 1) for k in bad[:5]) + (" ..." if bad.size > 5 else "")
+            raise ValueError(
+                f"{label} has {bad.size} values that are not finite numbers (NaN or inf) at samples {rows}; "
+                "every sample must be finite (fill or cut the gaps)"
+            )
     dt = np.diff(time)
+    if not np.all(dt > 0):
+        k = int(np.flatnonzero(dt <= 0)[0])
+        raise ValueError(f"time must increase: sample {k + 2} ({time[k + 1]:.6g} s) follows {time[k]:.6g} s")
     if not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
-        raise ValueError("the elevation record must be sampled uniformly in time")
+        k = int(np.argmax(np.abs(dt - dt[0])))
+        raise ValueError(
+            f"the record must be sampled uniformly in time: the step is {dt[0]:.6g} s at the start but "
+            f"{dt[k]:.6g} s between samples {k + 1} and {k + 2} (steps range {dt.min():.6g}-{dt.max():.6g} s); "
+            "resample it onto a uniform grid"
+        )
     n = time.size
     spectrum = np.fft.rfft(elevation - elevation.mean())
     omega = 2 * np.pi * np.fft.rfftfreq(n, dt[0])

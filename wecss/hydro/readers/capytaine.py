@@ -31,7 +31,9 @@ import xarray as xr
 from numpy.typing import ArrayLike
 
 from ...constants import RIGID_BODY_DOFS
+from ...netcdf import unreadable
 from .._build import build_dataset
+from .._repair import HIGHEST_FREQUENCY_SOURCE
 from .._schema import dof_index, split_dof
 from .._validate import HydroDataError
 
@@ -206,8 +208,11 @@ def _open(source: PathLike | xr.Dataset) -> tuple[xr.Dataset, str]:
     path = Path(source)
     if not path.is_file():
         raise FileNotFoundError(f"no Capytaine netCDF file at {str(path)!r}")
-    with xr.open_dataset(path) as ds:
-        return ds.load(), f"Capytaine file {path.name}"
+    try:
+        with xr.open_dataset(path) as ds:
+            return ds.load(), f"Capytaine file {path.name}"
+    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
+        raise unreadable(path, err) from None
 
 
 def _merge_complex(ds: xr.Dataset) -> xr.Dataset:
@@ -378,7 +383,7 @@ def _added_mass_inf(
         if given != HIGHEST_FREQUENCY:
             raise ValueError(f"added_mass_inf must be a matrix, {HIGHEST_FREQUENCY!r} or None; got {given!r}")
         w = omega[main[-1]]
-        return added_mass[main[-1]], f"added mass at the highest frequency, omega = {w:.6g} rad/s (approximation)"
+        return added_mass[main[-1]], f"{HIGHEST_FREQUENCY_SOURCE}, omega = {w:.6g} rad/s (approximation)"
     if isinstance(given, xr.DataArray):
         try:
             values = given.sel(influenced_dof=dofs, radiating_dof=dofs).transpose("influenced_dof", "radiating_dof")
