@@ -347,9 +347,14 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         attrs["radiation_fit_stable"] = int(report["stable"])
         attrs["radiation_fit_repair"] = str(report["repair"])
     if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:
-        bound = power_bound_of(compiled)
-        data["power_bound"] = (("pto",), bound.per_pto)
-        attrs["share_of_power_bound"] = float(np.sum(data["mean_pto_power"][1]) / bound.total)
+        try:
+            bound = power_bound_of(compiled)
+        except ValueError as err:  # a reported quantity: the run stands without it, and says why
+            note = f"no complex-conjugate power bound: {err}"
+            attrs["notes"] = note if attrs["notes"] == "none" else f"{attrs['notes']}; {note}"
+        else:
+            data["power_bound"] = (("pto",), bound.per_pto)
+            attrs["share_of_power_bound"] = float(np.sum(data["mean_pto_power"][1]) / bound.total)
     ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return apply_attrs(ds)
 
