@@ -187,6 +187,8 @@ def _sweep(args: argparse.Namespace) -> int:
         workers=args.workers,
         retry_failed=args.retry_failed,
         progress=None if args.quiet else sys.stderr,
+        compress=args.compress,
+        float32=args.float32,
     )
     print(
         f"{ds.attrs['cases_done']} done, {ds.attrs['cases_failed']} failed, {ds.attrs['cases_pending']} pending; "
@@ -241,6 +243,23 @@ def _plot(result: str, png: str | None) -> int:
     return 0
 
 
+
+def _storage_options(parser: argparse.ArgumentParser) -> None:
+    """``--compress LEVEL`` and ``--float32``: how result files are stored (``wecss.netcdf.write_netcdf``)."""
+    parser.add_argument(
+        "--compress",
+        type=int,
+        default=0,
+        choices=range(10),
+        metavar="LEVEL",
+        help="zlib level of the result files, 0 (none, default) to 9 (smallest); lossless",
+    )
+    parser.add_argument(
+        "--float32",
+        action="store_true",
+        help="store the results' variables in single precision (half the size; relative error 6e-8)",
+    )
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``wecss`` command."""
     parser = argparse.ArgumentParser(prog="wecss", description="Multi-body wave energy converter toolkit.")
@@ -255,19 +274,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("-o", "--output", help="result file (.nc); default: <scene name>.nc in this folder")
     run.add_argument("--png", help="summary plot (.png); default: next to the result")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
-    run.add_argument(
-        "--compress",
-        type=int,
-        default=0,
-        choices=range(10),
-        metavar="LEVEL",
-        help="zlib level of the result file, 0 (none, default) to 9 (smallest); lossless",
-    )
-    run.add_argument(
-        "--float32",
-        action="store_true",
-        help="store the result's variables in single precision (half the size; relative error 6e-8)",
-    )
+    _storage_options(run)
     run.add_argument(
         "--set",
         action="append",
@@ -284,6 +291,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. tcp://host:8786")
     sweep.add_argument("--retry-failed", action="store_true", help="run the cases that failed before again")
     sweep.add_argument("-q", "--quiet", action="store_true", help="no progress line")
+    _storage_options(sweep)
     plot = sub.add_parser("plot", help="the summary plot of a result file (PNG)")
     plot.add_argument("result", help="result file (.nc)")
     plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")

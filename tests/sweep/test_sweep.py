@@ -185,6 +185,21 @@ def test_the_cli_runs_a_sweep_file(tmp_path: Path, capsys: pytest.CaptureFixture
     assert (tmp_path / "out" / "combined.nc").is_file()
 
 
+def test_the_cli_stores_a_sweep_compressed_in_single_precision(tmp_path: Path) -> None:
+    import netCDF4
+
+    spec = _sweep_file(tmp_path, [1.0])
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "out"), "-q", "--compress", "5", "--float32"]) == 0
+    cases = sorted((tmp_path / "out").glob("c[0-9]*.nc"))
+    assert cases
+    for path in [*cases, tmp_path / "out" / "combined.nc"]:
+        with netCDF4.Dataset(path) as nc:
+            floats = [
+                v for v in nc.variables.values() if getattr(v.dtype, "kind", "") == "f" and v.name not in nc.dimensions
+            ]
+            assert floats and all(v.dtype == np.float32 for v in floats), path.name
+
+
 def test_process_pool_and_local_dask_cluster_give_the_results_of_the_sequential_run(tmp_path: Path) -> None:
     pytest.importorskip("dask.distributed")
     sweep = Sweep(BASE, (("sea.period", (1.0, 1.4)), ("controller.parameters.damping", (3.0, 6.0))))

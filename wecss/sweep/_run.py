@@ -142,6 +142,8 @@ def run_sweep(
     workers: int | None = None,
     retry_failed: bool = False,
     progress: TextIO | None = sys.stderr,
+    compress: int = 0,
+    float32: bool = False,
 ) -> xr.Dataset:
     """Run every case of ``sweep`` that has no result in ``folder`` and return the combined dataset (also written to
     ``folder/combined.nc``).
@@ -164,6 +166,9 @@ def run_sweep(
         Run again the cases that failed before (default: they stay failed and are skipped).
     progress : text stream or None
         Where the progress line goes.
+    compress, float32 : int, bool
+        Storage of the case files and the combined dataset (:func:`wecss.netcdf.write_netcdf`): zlib level 0 (none)
+        to 9, and floating-point variables in single precision.
 
     Returns
     -------
@@ -208,7 +213,7 @@ def run_sweep(
         compile_s.append(outcome.compile_s)
         run_s.append(outcome.run_s)
         if outcome.result is not None:
-            write_netcdf(outcome.result, result)
+            write_netcdf(outcome.result, result, compress=compress, float32=float32)
             failure.unlink(missing_ok=True)
             log.write(f"done {case.name} (compile {outcome.compile_s:.3g} s, run {outcome.run_s:.3g} s)")
         else:
@@ -242,7 +247,7 @@ def run_sweep(
         },
         sort_keys=True,
     )
-    write_netcdf(ds, path / COMBINED_FILE)
+    write_netcdf(ds, path / COMBINED_FILE, compress=compress, float32=float32)
     return ds
 
 
