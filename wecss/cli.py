@@ -243,7 +243,6 @@ def _plot(result: str, png: str | None) -> int:
     return 0
 
 
-
 def _storage_options(parser: argparse.ArgumentParser) -> None:
     """``--compress LEVEL`` and ``--float32``: how result files are stored (``wecss.netcdf.write_netcdf``)."""
     parser.add_argument(
@@ -259,6 +258,7 @@ def _storage_options(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="store the results' variables in single precision (half the size; relative error 6e-8)",
     )
+
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``wecss`` command."""

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from .. import waves as wv
-from ..devices import Device
+from ..devices import Device, spec_files
 from ..devices import available as available_devices
 from ..devices import load as load_device
 from ..hydro import HydroData, without_body_interactions
@@ -333,23 +333,37 @@ PARTS_CACHE_SIZE: int = 8
 build them once per worker."""
 
 
-def _file_stamp(value: str | None) -> tuple[str | None, int]:
-    """A name and, when it names a file, the file's modification time (a changed file is built again)."""
-    if value is None:
-        return value, 0
-    path = Path(value)
-    return value, path.stat().st_mtime_ns if path.is_file() else 0
+FileStamp = tuple[str, int, int]
+"""A file's resolved path, modification time [ns] and size [bytes]."""
+
+
+def _stamp(path: Path) -> FileStamp:
+    stat = path.stat()
+    return str(path.resolve()), stat.st_mtime_ns, stat.st_size
+
+
+def _device_sources(name: str, hydro: str | None) -> tuple[FileStamp, ...]:
+    """Stamps of the user's files a device's cached parts are read from: the spec file (with the database file it
+    names) and the database the scene names. A changed, moved or replaced file changes the key, so the cache builds
+    the parts again. Catalogue names stand for the files shipped with wecss."""
+    files: list[Path] = []
+    if name.endswith(".toml") and Path(name).is_file():
+        files.extend(spec_files(name))
+    if hydro is not None and Path(hydro).is_file():
+        files.append(Path(hydro))
+    return tuple(_stamp(f) for f in files)
 
 
 @functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
 def _device_parts(
-    name: tuple[str, int], hydro: tuple[str | None, int], body_to_body: bool = True
+    name: str, hydro: str | None, sources: tuple[FileStamp, ...], body_to_body: bool = True
 ) -> tuple[Device, HydroCoupling, StaticModel, np.ndarray, np.ndarray]:
     """The device, its coupling to the database (without the radiation between bodies unless ``body_to_body``),
-    its statics, equilibrium and static stiffness (cached; the arrays are read-only)."""
-    device = _device(Scene(device=DeviceChoice(name=name[0], hydro=hydro[0]), sea=_CALM, solver=_CALM_SOLVER))
+    its statics, equilibrium and static stiffness (cached, keyed also by the stamps of the files read, ``sources``;
+    the arrays are read-only)."""
+    device = _device(Scene(device=DeviceChoice(name=name, hydro=hydro), sea=_CALM, solver=_CALM_SOLVER))
     try:
-        database = device.hydro(hydro[0])
+        database = device.hydro(hydro)
     except FileNotFoundError as err:
         raise SceneError(f"device.hydro: {err}") from None
     coupling = device.coupling(database if body_to_body else without_body_interactions(database))
@@ -367,12 +381,17 @@ _CALM_SOLVER = Solver(dt=0.01)
 
 @functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
 def _radiation_parts(
-    name: tuple[str, int], hydro: tuple[str | None, int], radiation: Radiation, frequency: bool, dt: float
+    name: str,
+    hydro: str | None,
+    sources: tuple[FileStamp, ...],
+    radiation: Radiation,
+    frequency: bool,
+    dt: float,
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
-    """The radiation memory of a device for a step (cached)."""
-    coupling = _device_parts(name, hydro, radiation.body_to_body)[1]
+    """The radiation memory of a device for a step (cached, keyed as :func:`_device_parts`)."""
+    coupling = _device_parts(name, hydro, sources, radiation.body_to_body)[1]
     solver = Solver(method="frequency" if frequency else "beeman", dt=dt)
-    scene = Scene(device=DeviceChoice(name=name[0], hydro=hydro[0]), sea=_CALM, solver=solver, radiation=radiation)
+    scene = Scene(device=DeviceChoice(name=name, hydro=hydro), sea=_CALM, solver=solver, radiation=radiation)
     return make_radiation(scene, coupling, dt)
 
 
@@ -391,9 +410,10 @@ def compile_plant(scene: Scene) -> CompiledScene:
     SceneError
         On unknown names, missing files, periods outside the database.
     """
-    name, hydro_name = _file_stamp(scene.device.name), _file_stamp(scene.device.hydro)
+    name, hydro_name = scene.device.name, scene.device.hydro
+    sources = _device_sources(name, hydro_name)
     body_to_body = scene.radiation.body_to_body
-    device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name, body_to_body)
+    device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name, sources, body_to_body)
     notes: list[str] = []
     if not body_to_body:
         notes.append("radiation between bodies left out (radiation.body_to_body = false)")
@@ -413,7 +433,7 @@ def compile_plant(scene: Scene) -> CompiledScene:
                 f"{excitation.outside_share:.2e} of the variance"
             )
     frequency = scene.solver.method == "frequency"
-    radiation, summary, fit = _radiation_parts(name, hydro_name, scene.radiation, frequency, dt)
+    radiation, summary, fit = _radiation_parts(name, hydro_name, sources, scene.radiation, frequency, dt)
     if scene.solver.method == "frequency":
         notes.append(
             "radiation memory not used: the frequency-domain solution takes A(omega) and B(omega) from the database"

@@ -4,10 +4,18 @@ Functions decorated with :func:`kernel` are compiled with ``numba.njit(cache=Tru
 (``pip install "wecss[fast]"``) and run as plain Python/numpy otherwise, from the same source, so both paths give
 the same numbers (to rounding). Set the environment variable ``WECSS_JIT=0`` before importing wecss to force the
 pure-Python path.
+
+numba itself is imported on the first call of a kernel, not when wecss is imported (importing numba takes about
+0.35 s): until then a decorated function is a :class:`LazyKernel`. The first call makes every pending kernel a numba
+dispatcher at once and puts the dispatchers in place of the lazy kernels among the globals of the modules that
+define kernels, which is where numba looks up the kernels a kernel calls. Elsewhere a lazy kernel forwards its calls
+to its dispatcher.
 """
 
 from __future__ import annotations
 
+import functools
+import importlib.util
 import os
 from collections.abc import Callable
 from typing import Any, TypeVar
@@ -18,32 +26,89 @@ F = TypeVar("F", bound=Callable[..., Any])
 def _numba_available() -> bool:
     if os.environ.get("WECSS_JIT", "1").strip() in ("0", "false", "no", "off"):
         return False
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    return importlib.util.find_spec("numba") is not None
 
 
 JIT: bool = _numba_available()
 """True when the kernels are compiled with numba."""
 
-if JIT:
-    import warnings
+_PENDING: list[LazyKernel] = []
+_NUMBA: list[Any] = []  # the numba module once imported by the first call of a kernel
 
-    from numba.core.errors import NumbaPerformanceWarning
 
-    # small-matrix products on slices: numba notes they are not contiguous; the cost is measured, not guessed
-    warnings.filterwarnings("ignore", category=NumbaPerformanceWarning)
+class LazyKernel:
+    """A function that becomes ``numba.njit(**options)(fn)`` on the first call of any kernel (see the module
+    docstring); calls and attributes (``py_func``, ``signatures`` ...) go to the dispatcher."""
+
+    def __init__(self, fn: Callable[..., Any], options: dict[str, Any]) -> None:
+        functools.update_wrapper(self, fn)
+        self.fn = fn
+        self.options = options
+        self.dispatcher: Any = None
+
+    def compiled(self) -> Any:
+        """The numba dispatcher (importing numba and making every pending kernel on the first use)."""
+        if self.dispatcher is None:
+            _make_pending()
+        return self.dispatcher
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        return self.compiled()(*args, **kwargs)
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("__") or name in ("fn", "options", "dispatcher"):
+            raise AttributeError(name)
+        return getattr(self.compiled(), name)
+
+    def __repr__(self) -> str:
+        return f"<LazyKernel {self.fn.__module__}.{self.fn.__qualname__}>"
+
+
+def _numba() -> Any:
+    if not _NUMBA:
+        import warnings
+
+        import numba
+        from numba.core.errors import NumbaPerformanceWarning
+
+        # small-matrix products on slices: numba notes they are not contiguous; the cost is measured, not guessed
+        warnings.filterwarnings("ignore", category=NumbaPerformanceWarning)
+        _NUMBA.append(numba)
+    return _NUMBA[0]
+
+
+def _put_in_place(namespace: dict[str, Any]) -> None:
+    """Replace the made lazy kernels among a module's globals by their dispatchers."""
+    for name, value in list(namespace.items()):
+        if isinstance(value, LazyKernel) and value.dispatcher is not None:
+            namespace[name] = value.dispatcher
+
+
+def _make_pending() -> None:
+    numba = _numba()
+    pending = list(_PENDING)
+    _PENDING.clear()
+    for lazy in pending:
+        lazy.dispatcher = numba.njit(**lazy.options)(lazy.fn)
+    namespaces = {id(lazy.fn.__globals__): lazy.fn.__globals__ for lazy in pending}
+    for namespace in namespaces.values():
+        _put_in_place(namespace)
+
+
+def _njit(fn: F, options: dict[str, Any]) -> F:
+    if _NUMBA:  # numba already imported: compile as usual
+        _put_in_place(fn.__globals__)
+        return _NUMBA[0].njit(**options)(fn)
+    lazy = LazyKernel(fn, options)
+    _PENDING.append(lazy)
+    return lazy  # type: ignore[return-value]
 
 
 def kernel(fn: F) -> F:
     """Compile ``fn`` with numba when available (see the module docstring)."""
     if not JIT:
         return fn
-    import numba
-
-    return numba.njit(cache=True)(fn)  # type: ignore[return-value]
+    return _njit(fn, {"cache": True})
 
 
 def reduction_kernel(fn: F) -> F:
@@ -53,9 +118,7 @@ def reduction_kernel(fn: F) -> F:
     """
     if not JIT:
         return fn
-    import numba
-
-    return numba.njit(cache=True, fastmath={"reassoc", "contract", "arcp"})(fn)  # type: ignore[return-value]
+    return _njit(fn, {"cache": True, "fastmath": {"reassoc", "contract", "arcp"}})
 
 
 def loop_kernel(fallback: Callable[..., Any]) -> Callable[[F], F]:

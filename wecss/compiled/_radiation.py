@@ -294,16 +294,38 @@ def memory_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np
         return 0.5 * (full + np.conj(mirror))
     if arrays.kind == RadiationKind.CONVOLUTION:
         out -= arrays.newest[None]
-        for c in range(n_h):
+        _subtract_convolution_response(arrays, omega, dt, out)
+    return out
+
+
+def _subtract_convolution_response(arrays: RadiationArrays, omega: np.ndarray, dt: float, out: np.ndarray) -> None:
+    """Subtract sum_k K_k exp(-i omega tau_k) of the convolution's stored lags from ``out`` (n_omega, n_h, n_h).
+
+    Columns with the same lags (usually all of them) share one cos/sin table of omega tau_k and one pair of real
+    matrix products: the exponentials, not the products, dominated when each column built its own (0.28 s for
+    m4-134 at 359 frequencies)."""
+    n_h = arrays.newest.shape[0]
+    groups: dict[tuple[int, int], list[int]] = {}
+    for c in range(n_h):
+        groups.setdefault((int(arrays.fine_length[c]), int(arrays.coarse_length[c])), []).append(c)
+    for (nf, nc), columns in groups.items():
+        lags = np.concatenate([np.arange(nf, 0, -1), nf + arrays.stride * np.arange(nc, 0, -1)])  # oldest first
+        phase = np.outer(omega, lags * dt)
+        blocks, targets = [], []
+        for c in columns:
             members = arrays.row[arrays.col[c] : arrays.col[c + 1]]
-            nf, nc = int(arrays.fine_length[c]), int(arrays.coarse_length[c])
             size = members.size  # (an empty block, such as a coarse tail of no lags, keeps its shape)
             fine = arrays.fine[arrays.fine_start[c] : arrays.fine_start[c] + nf * size].reshape(nf, size)
             coarse = arrays.coarse[arrays.coarse_start[c] : arrays.coarse_start[c] + nc * size].reshape(nc, size)
-            lags = np.concatenate([np.arange(nf, 0, -1), nf + arrays.stride * np.arange(nc, 0, -1)])  # oldest first
-            values = np.concatenate([fine, coarse])
-            out[:, members, c] -= np.exp(-1j * np.outer(omega, lags * dt)) @ values
-    return out
+            blocks.append(np.concatenate([fine, coarse]))
+            targets.append((members, c))
+        values = np.concatenate(blocks, axis=1)
+        real, imag = np.cos(phase) @ values, np.sin(phase) @ values  # exp(-i x) = cos x - i sin x
+        start = 0
+        for members, c in targets:
+            part = slice(start, start + members.size)
+            out[:, members, c] -= real[:, part] - 1j * imag[:, part]
+            start += members.size
 
 
 def interpolate_matrices(omega_data: np.ndarray, values: np.ndarray, omega: np.ndarray) -> np.ndarray:

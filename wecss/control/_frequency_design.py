@@ -23,7 +23,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize
 
 from ..linear import LinearModel
 
@@ -197,6 +196,8 @@ def optimal_damping(model: LinearModel, omega: np.ndarray, coefficients: np.ndar
 
     strongest = int(np.argmax(np.sum(np.abs(driven) ** 2, axis=0)))
     start = np.log(1.0 / np.abs(np.diagonal(admittance[strongest])))
+    from scipy.optimize import minimize  # lazy: importing scipy.optimize takes about 0.25 s
+
     result = minimize(negative_power, start, method="L-BFGS-B", options={"ftol": 1e-15, "gtol": 1e-12})
     return mean_power(model, omega, coefficients, np.exp(result.x))
 
@@ -265,6 +266,8 @@ def optimal_spring_damper(
     if limit is not None and np.any(force_room(x0) < 0):  # the optimal damping itself is too strong: scale it down
         x0[:n_pto] *= float(np.min(1.0 / (1.0 - force_room(x0)).clip(1.0)))
     bounds = [(0.0, None)] * n_pto + [(None, None)] * n_pto
+    from scipy.optimize import minimize
+
     result = minimize(
         negative_power, x0, method="SLSQP", bounds=bounds, constraints=constraints,
         options={"ftol": 1e-14, "maxiter": 500},

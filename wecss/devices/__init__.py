@@ -8,3 +8,4 @@ from ._members import HotSpot as HotSpot
 from ._members import Member as Member
 from ._members import Section as Section
 from ._spec import DeviceSpecError as DeviceSpecError
+from ._spec import spec_files as spec_files

@@ -16,7 +16,7 @@ from ..hydro import HydroData, is_wecss_database, read_bemio, read_capytaine, re
 from ..hydro import load as load_hydro
 from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Mooring, Multibody, StaticModel
 from ._members import Member, read_members
-from ._spec import DeviceSpecError, build_model, build_moorings, read_spec
+from ._spec import DeviceSpecError, build_model, build_moorings, hydro_source, read_spec
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,9 +68,7 @@ class Device:
         """
         spec, folder = read_spec(source)
         model, ptos = build_model(spec)
-        hydro = spec.get("hydro")
-        if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out", ".h5"))):
-            hydro = str((folder / hydro).resolve())
+        hydro = hydro_source(spec, folder)
         assumptions = {str(k): str(v) for k, v in spec.get("assumptions", {}).items()}
         try:
             members = read_members(spec["name"], list(spec.get("members", [])), list(model.body_names))

@@ -86,6 +86,33 @@ def read_spec(source: str | Path | Mapping[str, Any]) -> tuple[dict[str, Any], P
         raise DeviceSpecError(f"{path}: {err}") from None
 
 
+def hydro_source(spec: Mapping[str, Any], folder: Path | None) -> str | None:
+    """The database a spec names: a catalogue name as written, a file path resolved against the spec's folder."""
+    hydro = spec.get("hydro")
+    if hydro is not None and folder is not None and ("/" in hydro or hydro.endswith((".nc", ".out", ".h5"))):
+        return str((folder / hydro).resolve())
+    return hydro
+
+
+def spec_files(path: str | Path) -> tuple[Path, ...]:
+    """The files a device built from the spec file ``path`` is read from: the spec and, when it names one, its
+    database file (for a cache that must see either change).
+
+    Raises
+    ------
+    FileNotFoundError
+        If the spec does not exist.
+    DeviceSpecError
+        If the TOML cannot be parsed.
+    """
+    spec, folder = read_spec(path)
+    hydro = hydro_source(spec, folder)
+    files = [Path(path).resolve()]
+    if hydro is not None and Path(hydro).is_file():
+        files.append(Path(hydro))
+    return tuple(files)
+
+
 def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | ActuatorPTO, ...]]:
     """The multibody tree and PTOs of a spec.
 
