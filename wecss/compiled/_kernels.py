@@ -213,11 +213,19 @@ def workspace(p: Plant) -> Workspace:
 @kernel
 def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
     """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w``."""
+    frames(p, q, w, True)
+    _body_jacobian(p, w)
+
+
+@kernel
+def frames(p: Plant, q: np.ndarray, w: Workspace, twists: bool) -> None:
+    """The bodies' frames rot, trans and CoM positions pos at configuration ``q`` into ``w``; with ``twists``
+    also the world twists of the joint columns, ``cols``."""
     n = p.com0.shape[0]
-    nv = p.twists.shape[0]
-    rot, trans, cols, b = w.rot, w.trans, w.cols, w.b
+    rot, trans, cols = w.rot, w.trans, w.cols
     tmp, tmp2, t_step = w.vec, w.vec2, w.t_step
-    cols[:, :] = 0.0
+    if twists:
+        cols[:, :] = 0.0
     for idx in range(n):
         i = p.order[idx]
         par = p.parent[i]
@@ -237,23 +245,24 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
             x = q[iq : iq + 3].copy()
             r[:, :] = quat_to_matrix(q[iq + 3 : iq + 7].copy())
             t[:] = x - r @ p.com0[i]
-            hx = hat(x)
-            for a in range(3):
-                cols[a, iv + a] = 1.0
-            cols[:3, iv + 3 : iv + 6] = hx @ r
-            cols[3:, iv + 3 : iv + 6] = r
+            if twists:
+                hx = hat(x)
+                for a in range(3):
+                    cols[a, iv + a] = 1.0
+                cols[:3, iv + 3 : iv + 6] = hx @ r
+                cols[3:, iv + 3 : iv + 6] = r
         else:
             for k in range(p.n_cols[i]):
                 col = iv + k
                 xi = p.twists[col]
-                # S = Ad(G) xi: w' = R w, v' = R v + t x w'
-                _rotate(r, xi[3:], tmp)
-                _rotate(r, xi[:3], tmp2)
-                for a in range(3):
-                    cols[3 + a, col] = tmp[a]
-                _cross(t, tmp, t_step)
-                for a in range(3):
-                    cols[a, col] = tmp2[a] + t_step[a]
+                if twists:  # S = Ad(G) xi: w' = R w, v' = R v + t x w'
+                    _rotate(r, xi[3:], tmp)
+                    _rotate(r, xi[:3], tmp2)
+                    for a in range(3):
+                        cols[3 + a, col] = tmp[a]
+                    _cross(t, tmp, t_step)
+                    for a in range(3):
+                        cols[a, col] = tmp2[a] + t_step[a]
                 # G <- G exp(xi q)
                 _screw(xi, q[iq + k], w.r_step, t_step)
                 _rotate(r, t_step, tmp)
@@ -264,7 +273,15 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
         _rotate(r, p.com0[i], tmp)
         for a in range(3):
             w.pos[i, a] = tmp[a] + t[a]
-    # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
+
+
+@kernel
+def _body_jacobian(p: Plant, w: Workspace) -> None:
+    """B from the frames and the world twists in ``w`` (:func:`frames`): B_i = [[I, -hat(p)], [0, R']] S on the
+    columns that move body i."""
+    n = p.com0.shape[0]
+    nv = p.twists.shape[0]
+    rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
     for i in range(n):
         r = rot[i]
         pi = w.pos[i]
@@ -692,7 +709,7 @@ def poses(p: Plant, qs: np.ndarray):
     rotations = np.zeros((n_t, n, 3))
     w = workspace(p)
     for t in range(n_t):
-        place(p, qs[t], w)
+        frames(p, qs[t], w, False)
         positions[t] = w.pos
         for i in range(n):
             so3_log_into(w.rot[i], rotations[t, i])
