@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compiled import complex_columns, kernel, phi_functions, real_part_rows, reduction_kernel
+from ..compiled import JIT, complex_columns, phi_functions, real_part_rows, reduction_kernel
 
 CONDITION_LIMIT: float = 1e8
 """Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""
@@ -144,20 +144,6 @@ class ModalSteps:
     free_input1: np.ndarray
 
 
-@kernel
-def modal_recursion(decay: np.ndarray, forcing: np.ndarray, z0: np.ndarray) -> np.ndarray:
-    """z_{k+1} = decay z_k + forcing_k for k = 0 ... n - 1; returns z_0 ... z_n (n + 1, n_modes)."""
-    n = forcing.shape[0]
-    out = np.empty((n + 1, z0.size), dtype=np.complex128)
-    z = z0.copy()
-    out[0] = z
-    for k in range(n):
-        for j in range(z.size):
-            z[j] = decay[j] * z[j] + forcing[k, j]
-        out[k + 1] = z
-    return out
-
-
 BLOCK_STEPS: int = 512
 """Steps per block of :func:`run`: the block's modal coordinates stay in cache instead of filling memory."""
 
@@ -204,7 +190,8 @@ def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np
     # per step, from s_k: the outputs' modal part, then the modal part of the free states' increment
     both = np.empty((n_t, n_out + n_free))
     out_both = np.concatenate([out_modes, free_modes], axis=1)
-    s = _split((form.inverse @ x0[form.rest]).astype(complex)[None])[0] - u[0] @ lead
+    z0 = form.inverse @ x0[form.rest]
+    s = np.concatenate([z0.real, z0.imag]) - u[0] @ lead
     block = np.empty((BLOCK_STEPS + 1, s.size))
     for k0 in range(0, n_t, BLOCK_STEPS):
         k1 = min(n_t, k0 + BLOCK_STEPS)  # block of steps k0 ... k1 - 1, started from s_k0
@@ -224,8 +211,18 @@ def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np
     return y
 
 
-@reduction_kernel
-def shifted_recursion(decay: np.ndarray, forcing: np.ndarray, s0: np.ndarray, out: np.ndarray) -> None:
+def _numpy_recursion(decay: np.ndarray, forcing: np.ndarray, s0: np.ndarray, out: np.ndarray) -> None:
+    """:func:`shifted_recursion` without numba: one vector operation per step (the loop over modes in numpy)."""
+    n_modes = decay.size
+    out[0] = s0
+    z = s0[:n_modes] + 1j * s0[n_modes:]
+    for k in range(forcing.shape[0]):
+        z = decay * z + (forcing[k, :n_modes] + 1j * forcing[k, n_modes:])
+        out[k + 1, :n_modes] = z.real
+        out[k + 1, n_modes:] = z.imag
+
+
+def _compiled_recursion(decay: np.ndarray, forcing: np.ndarray, s0: np.ndarray, out: np.ndarray) -> None:
     """s_{k+1} = decay s_k + forcing_k for k = 0 ... n - 1, complex values stored as their real parts, then their
     imaginary parts (forcing (n, 2 n_modes)); writes s_0 ... s_n into ``out`` (n + 1, 2 n_modes)."""
     n_modes = decay.size
@@ -239,6 +236,9 @@ def shifted_recursion(decay: np.ndarray, forcing: np.ndarray, s0: np.ndarray, ou
             re[j] = r
         out[k + 1, :n_modes] = re
         out[k + 1, n_modes:] = im
+
+
+shifted_recursion = reduction_kernel(_compiled_recursion) if JIT else _numpy_recursion
 
 
 def _split(matrix: np.ndarray) -> np.ndarray:
