@@ -213,8 +213,8 @@ def apply_attrs(ds: xr.Dataset) -> xr.Dataset:
     Existing attributes other than these two are kept.
     """
     out = ds.copy()
-    for name in list(out.variables):
-        extra = attrs_for(name)
+    for name, variable in out.variables.items():  # the variables themselves (a DataArray per name costs more)
+        extra = attrs_for(str(name))
         if extra:
-            out[name].attrs.update(extra)
+            variable.attrs.update(extra)
     return out

@@ -115,3 +115,19 @@ def test_band_limited_kernel_keeps_the_band_and_drops_the_rest():
     assert np.all(np.diag(band.kernel[0]) < np.diag(full.kernel[0]))
     with pytest.raises(ValueError, match="band must be"):
         impulse_response(hydro, band=(20.0, 10.0), tail=False)
+
+
+def test_interpolate_matrices_equals_numpy_interp_entry_by_entry():
+    """The vectorised interpolation against np.interp on every entry, inside, on and outside the data's range."""
+    from wecss.compiled import interpolate_matrices
+
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 40):
+        omega_data = np.unique(rng.uniform(0.1, 10.0, n))
+        values = rng.normal(size=(omega_data.size, 3, 3))
+        omega = np.concatenate([rng.uniform(0.0, 12.0, 300), omega_data, [0.0, 12.0]])
+        flat = values.reshape(omega_data.size, -1)
+        expected = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(9)], axis=-1)
+        np.testing.assert_allclose(
+            interpolate_matrices(omega_data, values, omega), expected.reshape(omega.size, 3, 3), rtol=1e-15, atol=0
+        )

@@ -84,3 +84,23 @@ def test_phi_functions_equal_their_integrals(s):
         exact = quad(part, 0, 1, args=(np.real,), epsabs=0, epsrel=1e-13)[0]
         exact += 1j * quad(part, 0, 1, args=(np.imag,), epsabs=0, epsrel=1e-13)[0]
         assert abs(value[0] - exact) <= 1e-12 * abs(exact)
+
+
+def test_recursion_without_numba_equals_the_compiled_one():
+    """The numpy recursion (the path without numba) against the compiled one, and both against complex
+    arithmetic step by step, on decaying and oscillating modes over many steps."""
+    from wecss.linear._modal_recursion import _numpy_recursion, shifted_recursion
+
+    rng = np.random.default_rng(5)
+    n_modes, n = 9, 300
+    decay = np.exp(-rng.uniform(0.0, 0.05, n_modes) + 1j * rng.uniform(-1.0, 1.0, n_modes))
+    forcing = rng.normal(size=(n, 2 * n_modes))
+    s0 = rng.normal(size=2 * n_modes)
+    expected = np.empty((n + 1, n_modes), dtype=complex)
+    expected[0] = s0[:n_modes] + 1j * s0[n_modes:]
+    for k in range(n):
+        expected[k + 1] = decay * expected[k] + forcing[k, :n_modes] + 1j * forcing[k, n_modes:]
+    for recursion in (_numpy_recursion, shifted_recursion):
+        out = np.empty((n + 1, 2 * n_modes))
+        recursion(decay, forcing, s0, out)
+        np.testing.assert_allclose(out[:, :n_modes] + 1j * out[:, n_modes:], expected, rtol=1e-12, atol=1e-12)

@@ -215,55 +215,11 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
     """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w``."""
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
-    rot, trans, cols, b = w.rot, w.trans, w.cols, w.b
-    tmp, tmp2, t_step = w.vec, w.vec2, w.t_step
-    cols[:, :] = 0.0
-    for idx in range(n):
-        i = p.order[idx]
-        par = p.parent[i]
-        r = rot[i]
-        t = trans[i]
-        if par >= 0:
-            r[:, :] = rot[par]
-            t[:] = trans[par]
-        else:
-            r[:, :] = 0.0
-            for a in range(3):
-                r[a, a] = 1.0
-            t[:] = 0.0
-        iv = p.col_start[i]
-        iq = p.q_start[i]
-        if p.free[i] == 1:
-            x = q[iq : iq + 3].copy()
-            r[:, :] = quat_to_matrix(q[iq + 3 : iq + 7].copy())
-            t[:] = x - r @ p.com0[i]
-            hx = hat(x)
-            for a in range(3):
-                cols[a, iv + a] = 1.0
-            cols[:3, iv + 3 : iv + 6] = hx @ r
-            cols[3:, iv + 3 : iv + 6] = r
-        else:
-            for k in range(p.n_cols[i]):
-                col = iv + k
-                xi = p.twists[col]
-                # S = Ad(G) xi: w' = R w, v' = R v + t x w'
-                _rotate(r, xi[3:], tmp)
-                _rotate(r, xi[:3], tmp2)
-                for a in range(3):
-                    cols[3 + a, col] = tmp[a]
-                _cross(t, tmp, t_step)
-                for a in range(3):
-                    cols[a, col] = tmp2[a] + t_step[a]
-                # G <- G exp(xi q)
-                _screw(xi, q[iq + k], w.r_step, t_step)
-                _rotate(r, t_step, tmp)
-                for a in range(3):
-                    t[a] += tmp[a]
-                _compose(r, w.r_step, w.r_new)
-                r[:, :] = w.r_new
-        _rotate(r, p.com0[i], tmp)
-        for a in range(3):
-            w.pos[i, a] = tmp[a] + t[a]
+    rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
+    _frames(
+        p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, p.com0, q, w.rot, w.trans, w.pos,
+        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True,
+    )  # fmt: skip
     # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
     for i in range(n):
         r = rot[i]
@@ -278,6 +234,67 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
             for a in range(3):
                 b[6 * i + a, c] = s[a] - tmp[a]
                 b[6 * i + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+
+
+@kernel
+def _frames(
+    order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, q_start: np.ndarray, n_cols: np.ndarray,
+    free: np.ndarray, joint_twists: np.ndarray, com0: np.ndarray, q: np.ndarray, rot: np.ndarray, trans: np.ndarray,
+    pos: np.ndarray, cols: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
+    r_new: np.ndarray, twists: bool,
+) -> None:  # fmt: skip
+    """The bodies' frames rot, trans and CoM positions pos at configuration ``q``; with ``twists`` also the world
+    twists of the joint columns, ``cols`` (the arrays as in Plant and Workspace). It takes the arrays, not the
+    tuples: a call with the Plant and Workspace costs about 1 us (a reference count per array they hold), more than
+    the frames of a few bodies, and :func:`poses` calls it once per configuration."""
+    n = com0.shape[0]
+    if twists:
+        cols[:, :] = 0.0
+    for idx in range(n):
+        i = order[idx]
+        par = parent[i]
+        r = rot[i]
+        t = trans[i]
+        for a in range(3):  # element loops: numba's slice assignment costs more than these copies
+            t[a] = trans[par, a] if par >= 0 else 0.0
+            for b in range(3):
+                r[a, b] = rot[par, a, b] if par >= 0 else (1.0 if a == b else 0.0)
+        iv = col_start[i]
+        iq = q_start[i]
+        if free[i] == 1:
+            x = q[iq : iq + 3].copy()
+            r[:, :] = quat_to_matrix(q[iq + 3 : iq + 7].copy())
+            t[:] = x - r @ com0[i]
+            if twists:
+                hx = hat(x)
+                for a in range(3):
+                    cols[a, iv + a] = 1.0
+                cols[:3, iv + 3 : iv + 6] = hx @ r
+                cols[3:, iv + 3 : iv + 6] = r
+        else:
+            for k in range(n_cols[i]):
+                col = iv + k
+                xi = joint_twists[col]
+                if twists:  # S = Ad(G) xi: w' = R w, v' = R v + t x w'
+                    _rotate(r, xi[3:], tmp)
+                    _rotate(r, xi[:3], tmp2)
+                    for a in range(3):
+                        cols[3 + a, col] = tmp[a]
+                    _cross(t, tmp, t_step)
+                    for a in range(3):
+                        cols[a, col] = tmp2[a] + t_step[a]
+                # G <- G exp(xi q)
+                _screw(xi, q[iq + k], r_step, t_step)
+                _rotate(r, t_step, tmp)
+                for a in range(3):
+                    t[a] += tmp[a]
+                _compose(r, r_step, r_new)
+                for a in range(3):
+                    for b in range(3):
+                        r[a, b] = r_new[a, b]
+        _rotate(r, com0[i], tmp)
+        for a in range(3):
+            pos[i, a] = tmp[a] + t[a]
 
 
 @kernel
@@ -697,9 +714,17 @@ def poses(p: Plant, qs: np.ndarray):
     positions = np.zeros((n_t, n, 3))
     rotations = np.zeros((n_t, n, 3))
     w = workspace(p)
-    for t in range(n_t):
-        place(p, qs[t], w)
-        positions[t] = w.pos
+    order, parent, col_start, q_start, n_cols, free = p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free
+    joint_twists, com0 = p.twists, p.com0
+    rot, trans, pos, cols, vec, vec2, t_step, r_step, r_new = w.rot, w.trans, w.pos, w.cols, w.vec, w.vec2, \
+        w.t_step, w.r_step, w.r_new  # fmt: skip
+    for t in range(n_t):  # the arrays, not the tuples, in the call (see _frames)
+        _frames(
+            order, parent, col_start, q_start, n_cols, free, joint_twists, com0, qs[t], rot, trans, pos, cols, vec,
+            vec2, t_step, r_step, r_new, False,
+        )  # fmt: skip
         for i in range(n):
-            so3_log_into(w.rot[i], rotations[t, i])
+            for a in range(3):
+                positions[t, i, a] = pos[i, a]
+            so3_log_into(rot[i], rotations[t, i])
     return positions, rotations

@@ -330,8 +330,16 @@ def _subtract_convolution_response(arrays: RadiationArrays, omega: np.ndarray, d
 
 def interpolate_matrices(omega_data: np.ndarray, values: np.ndarray, omega: np.ndarray) -> np.ndarray:
     """Linear interpolation of (n_omega, n, n) coefficient matrices to the frequencies ``omega`` [rad/s]."""
+    omega = np.asarray(omega, dtype=float)
     flat = values.reshape(omega_data.size, -1)
-    out = np.stack([np.interp(omega, omega_data, flat[:, k]) for k in range(flat.shape[1])], axis=-1)
+    if omega_data.size == 1:
+        return np.broadcast_to(values, (omega.size, *values.shape[1:])).copy()
+    # as np.interp, on all entries at once: the interval's slope from its left end, the end values outside
+    j = np.clip(np.searchsorted(omega_data, omega, side="right") - 1, 0, omega_data.size - 2)
+    slope = (flat[j + 1] - flat[j]) / (omega_data[j + 1] - omega_data[j])[:, None]
+    out = slope * (omega - omega_data[j])[:, None] + flat[j]
+    out[omega <= omega_data[0]] = flat[0]
+    out[omega >= omega_data[-1]] = flat[-1]
     return out.reshape(omega.size, *values.shape[1:])
 
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compiled import complex_columns, kernel, phi_functions, real_part_rows
+from ..compiled import JIT, complex_columns, phi_functions, real_part_rows, reduction_kernel
 
 CONDITION_LIMIT: float = 1e8
 """Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""
@@ -144,20 +144,6 @@ class ModalSteps:
     free_input1: np.ndarray
 
 
-@kernel
-def modal_recursion(decay: np.ndarray, forcing: np.ndarray, z0: np.ndarray) -> np.ndarray:
-    """z_{k+1} = decay z_k + forcing_k for k = 0 ... n - 1; returns z_0 ... z_n (n + 1, n_modes)."""
-    n = forcing.shape[0]
-    out = np.empty((n + 1, z0.size), dtype=np.complex128)
-    z = z0.copy()
-    out[0] = z
-    for k in range(n):
-        for j in range(z.size):
-            z[j] = decay[j] * z[j] + forcing[k, j]
-        out[k + 1] = z
-    return out
-
-
 BLOCK_STEPS: int = 512
 """Steps per block of :func:`run`: the block's modal coordinates stay in cache instead of filling memory."""
 
@@ -183,31 +169,82 @@ def _forcing(maps: tuple[np.ndarray, ...], u: np.ndarray) -> tuple[np.ndarray, n
 
 def run(form: ModalForm, steps: ModalSteps, u: np.ndarray, c: np.ndarray, x0: np.ndarray | None = None) -> np.ndarray:
     """Outputs y = C x (n_t, n_out) at every step for the inputs u (n_t, m) [one row per step], from the state x0
-    (default zero), in blocks of BLOCK_STEPS steps."""
+    (default zero), in blocks of BLOCK_STEPS steps.
+
+    The recursion runs on the shifted coordinates s_k = z_k - input1 u_k, for which a step takes one input product
+    instead of two: s_{k+1} = decay s_k + (decay input1 + input0) u_k; then z_k = s_k + input1 u_k in the outputs
+    (a product with the small matrix Re(C input1)) and in the free states."""
     u = np.ascontiguousarray(u, dtype=float)
     x0 = np.zeros(form.n_states) if x0 is None else np.asarray(x0, dtype=float)
-    free_modes = real_part_rows(steps.free_state.T)
+    # the complex coordinates as real parts then imaginary parts: Re(z @ M) = [Re z, Im z] @ [Re M; -Im M]
+    free_modes = _split(steps.free_state).T * np.repeat([1.0, -1.0], form.n_modes)[:, None]
     out_modes, out_free = form.output_maps(c)
-    maps = _input_maps(steps)
-    y = np.empty((u.shape[0], out_free.shape[1]))
-    z = (form.inverse @ x0[form.rest]).astype(complex)
-    free = x0[form.free].copy()
-    for k0 in range(0, u.shape[0], BLOCK_STEPS):
-        k1 = min(u.shape[0], k0 + BLOCK_STEPS)  # block of steps k0 ... k1 - 1, started from z_k0
-        forcing, free_forcing = _forcing(maps, u[k0:k1])
-        block = modal_recursion(steps.decay, forcing, z).view(np.float64)
-        frees = np.empty((k1 - k0, free.size))
-        frees[0] = free
-        np.cumsum(block[:-1] @ free_modes + free_forcing, axis=0, out=frees[1:])
-        frees[1:] += free
-        np.matmul(block, out_modes, out=y[k0:k1])
-        if free.size:
-            y[k0:k1] += frees @ out_free
-        if k1 < u.shape[0]:  # the step from k1 - 1 to k1 starts the next block
-            forcing, free_forcing = _forcing(maps, u[k1 - 1 : k1 + 1])
-            z = steps.decay * block[-1].view(np.complex128) + forcing[0]
-            free = frees[-1] + block[-1] @ free_modes + free_forcing[0]
+    out_modes = np.concatenate([out_modes[0::2], out_modes[1::2]])
+    shifted = _split((steps.decay[:, None] * steps.input1 + steps.input0).T)  # (m, 2 n_modes)
+    lead = _split(steps.input1.T)  # z_k - s_k = u_k @ lead
+    out_input = lead @ out_modes  # (m, n_out): what u_k adds to the outputs through z_k - s_k
+    # the free states' increment over a step, Re(free_state z_k) + free_input0 u_k + free_input1 u_{k+1}, on s_k
+    free_input0 = lead @ free_modes + steps.free_input0.T
+    free_input1 = steps.free_input1.T
+    n_t, n_out, n_free = u.shape[0], out_free.shape[1], form.free.size
+    # per step, from s_k: the outputs' modal part, then the modal part of the free states' increment
+    both = np.empty((n_t, n_out + n_free))
+    out_both = np.concatenate([out_modes, free_modes], axis=1)
+    z0 = form.inverse @ x0[form.rest]
+    s = np.concatenate([z0.real, z0.imag]) - u[0] @ lead
+    block = np.empty((BLOCK_STEPS + 1, s.size))
+    for k0 in range(0, n_t, BLOCK_STEPS):
+        k1 = min(n_t, k0 + BLOCK_STEPS)  # block of steps k0 ... k1 - 1, started from s_k0
+        n = k1 - k0
+        shifted_recursion(steps.decay, u[k0:k1] @ shifted, s, block[: n + 1])  # s_k0 ... s_k1
+        np.matmul(block[:n], out_both, out=both[k0:k1])
+        s = block[n].copy()
+    y = both[:, :n_out]
+    y += u @ out_input
+    if n_free:  # the free states do not act on the modes: summed once the modes are known
+        increments = both[:-1, n_out:] + u[:-1] @ free_input0 + u[1:] @ free_input1
+        frees = np.empty((n_t, n_free))
+        frees[0] = x0[form.free]
+        np.cumsum(increments, axis=0, out=frees[1:])
+        frees[1:] += frees[0]
+        y += frees @ out_free
     return y
+
+
+def _numpy_recursion(decay: np.ndarray, forcing: np.ndarray, s0: np.ndarray, out: np.ndarray) -> None:
+    """:func:`shifted_recursion` without numba: one vector operation per step (the loop over modes in numpy)."""
+    n_modes = decay.size
+    out[0] = s0
+    z = s0[:n_modes] + 1j * s0[n_modes:]
+    for k in range(forcing.shape[0]):
+        z = decay * z + (forcing[k, :n_modes] + 1j * forcing[k, n_modes:])
+        out[k + 1, :n_modes] = z.real
+        out[k + 1, n_modes:] = z.imag
+
+
+def _compiled_recursion(decay: np.ndarray, forcing: np.ndarray, s0: np.ndarray, out: np.ndarray) -> None:
+    """s_{k+1} = decay s_k + forcing_k for k = 0 ... n - 1, complex values stored as their real parts, then their
+    imaginary parts (forcing (n, 2 n_modes)); writes s_0 ... s_n into ``out`` (n + 1, 2 n_modes)."""
+    n_modes = decay.size
+    d_re, d_im = decay.real.copy(), decay.imag.copy()
+    re, im = s0[:n_modes].copy(), s0[n_modes:].copy()
+    out[0] = s0
+    for k in range(forcing.shape[0]):
+        for j in range(n_modes):
+            r = d_re[j] * re[j] - d_im[j] * im[j] + forcing[k, j]
+            im[j] = d_re[j] * im[j] + d_im[j] * re[j] + forcing[k, n_modes + j]
+            re[j] = r
+        out[k + 1, :n_modes] = re
+        out[k + 1, n_modes:] = im
+
+
+shifted_recursion = reduction_kernel(_compiled_recursion) if JIT else _numpy_recursion
+
+
+def _split(matrix: np.ndarray) -> np.ndarray:
+    """The real matrix [Re M, Im M] (columns) of a complex matrix M: u @ it holds the real parts of u @ M, then
+    the imaginary parts."""
+    return np.concatenate([matrix.real, matrix.imag], axis=1)
 
 
 def outputs(form: ModalForm, c: np.ndarray, z: np.ndarray, free: np.ndarray) -> np.ndarray:

@@ -253,7 +253,7 @@ class LinearModel:
 
     @property
     def modal_form(self) -> ModalForm:
-        """The state matrix in modal coordinates (computed once; see ``wecss.sim._modal_recursion``)."""
+        """The state matrix in modal coordinates (computed once; see ``wecss.linear.ModalForm``)."""
         cached = self.__dict__.get("_modal_form")
         if cached is None:
             cached = ModalForm.of(np.asarray(self.state_space.A))

@@ -149,25 +149,34 @@ POSE_BLOCK: int = 100_000
 """Configurations per block when the notes evaluate the poses of a record."""
 
 
-def motion_notes(compiled: CompiledScene, q: np.ndarray) -> list[str]:
+def motion_notes(
+    compiled: CompiledScene, q: np.ndarray, known: tuple[np.ndarray, np.ndarray] | None = None
+) -> list[str]:
     """Notes on the saved configurations ``q`` (n_t, nq): motion amplitudes against the bodies' size and a drift
-    of the horizontal mean position."""
+    of the horizontal mean position. ``known``: the poses of ``q`` (positions, rotation vectors) when the caller
+    has them already (else they are computed here, in blocks)."""
     if q.shape[0] < 2:
         return []
     names = list(compiled.device.model.body_names)
     sizes = _sizes(compiled)
     rest_pos, rest_rot = poses(compiled.plant, np.ascontiguousarray(compiled.q0[None]))
+
+    def pose(rows: slice) -> tuple[np.ndarray, np.ndarray]:
+        if known is not None:
+            return known[0][rows], known[1][rows]
+        return poses(compiled.plant, np.ascontiguousarray(q[rows]))
+
     # poses in blocks of rows (a long record's poses would double its memory): largest rotation and vertical
     # shift from the equilibrium, and the mean positions over the first and the last tenth of the record
     tenth = max(1, q.shape[0] // 10)
     angle = np.zeros(len(names))
     shift = np.zeros(len(names))
     for start in range(0, q.shape[0], POSE_BLOCK):
-        position, rotation = poses(compiled.plant, np.ascontiguousarray(q[start : start + POSE_BLOCK]))
+        position, rotation = pose(slice(start, start + POSE_BLOCK))
         angle = np.maximum(angle, np.linalg.norm(rotation - rest_rot, axis=-1).max(axis=0))
         shift = np.maximum(shift, np.abs(position[..., 2] - rest_pos[..., 2]).max(axis=0))
-    head = poses(compiled.plant, np.ascontiguousarray(q[:tenth]))[0][:, :, :2].mean(axis=0)
-    tail = poses(compiled.plant, np.ascontiguousarray(q[-tenth:]))[0][:, :, :2].mean(axis=0)
+    head = pose(slice(None, tenth))[0][:, :, :2].mean(axis=0)
+    tail = pose(slice(q.shape[0] - tenth, None))[0][:, :, :2].mean(axis=0)
     notes = []
     big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
     if big:

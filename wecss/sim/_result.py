@@ -194,13 +194,15 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
     return out
 
 
-def _notes(compiled: CompiledScene, report: dict[str, Any], q: np.ndarray) -> list[str]:
+def _notes(
+    compiled: CompiledScene, report: dict[str, Any], q: np.ndarray, known: tuple[np.ndarray, np.ndarray] | None
+) -> list[str]:
     notes = [
         *compiled.notes,
         *fit_notes(compiled),
         *step_notes(compiled),
         *wave_notes(compiled),
-        *motion_notes(compiled, q),
+        *motion_notes(compiled, q, known),
     ]
     if compiled.device.ptos and not compiled.linear_controller:
         steps = compiled.scene.control_steps
@@ -281,8 +283,9 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
             eta = eta * Ramp(scene.sea.ramp_s)(record.time)
         data["wave_elevation"] = (("time",), eta)
+    known = None  # the poses, computed once for the output and the notes
     if "poses" in groups and n_t:
-        position, rotation = poses(compiled.plant, np.ascontiguousarray(record.q))
+        position, rotation = known = poses(compiled.plant, np.ascontiguousarray(record.q))
         data["body_position"] = (("time", "body", "axis"), position)
         data["body_rotation"] = (("time", "body", "axis"), rotation)
         coords["body"] = list(compiled.device.model.body_names)
@@ -331,7 +334,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "run_time_s": record.run_time,
         "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
         "seed": scene.sea.seed,
-        "notes": "; ".join(_notes(compiled, report, record.q)) or "none",
+        "notes": "; ".join(_notes(compiled, report, record.q, known)) or "none",
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
         "moorings": json.dumps([m.to_dict() for m in compiled.device.moorings]) if compiled.device.moorings else "none",
