@@ -40,12 +40,37 @@ def far_sums_array(r: RadiationArrays) -> np.ndarray:
 
 
 @reduction_kernel
+def _add_pair(
+    acc: np.ndarray, w1: np.ndarray, w2: np.ndarray, history: np.ndarray, i1: int, i2: int, b0: int, b1: int
+) -> None:
+    """acc[b] += w1 history[i1 + b] + w2 history[i2 + b] for b in [b0, b1): two lags per pass over the sums (half
+    their loads and stores)."""
+    for b in range(b0, b1):
+        u1 = history[i1 + b]
+        u2 = history[i2 + b]
+        a = acc[b]
+        for k in range(a.shape[0]):
+            a[k] += w1[k] * u1 + w2[k] * u2
+
+
+@reduction_kernel
+def _add_one(acc: np.ndarray, w: np.ndarray, history: np.ndarray, i0: int, b0: int, b1: int) -> None:
+    """acc[b] += w history[i0 + b] for b in [b0, b1)."""
+    for b in range(b0, b1):
+        u = history[i0 + b]
+        a = acc[b]
+        for k in range(a.shape[0]):
+            a[k] += w[k] * u
+
+
+@reduction_kernel
 def _far_sums(r: RadiationArrays, buf: np.ndarray, pos: int, far: np.ndarray) -> None:
     """far[b, e] <- the history sum of kernel entry e (ordered as ``r.row``) at the end of the b-th step after the
     newest stored velocity (b = 0 ... far.shape[0] - 1), over its lags l > b, all of them in the buffer now.
 
     Per radiating DOF (column) c, each stored kernel value multiplies the velocities of the block's targets it
-    meets; the sums of the column's rows for all targets stay in a small (block, rows) array."""
+    meets, two lags at a time; the sums of the column's rows for all targets stay in a small (block, rows) array.
+    The kernel values are taken as slices (numba vectorises those loops, not ones on an offset index)."""
     n_block = far.shape[0]
     fine, coarse, stride = r.fine, r.coarse, r.stride
     zero = pos + r.depth + 1  # target b's lag l sits in column zero + b - l of the doubled ring buffer
@@ -60,25 +85,24 @@ def _far_sums(r: RadiationArrays, buf: np.ndarray, pos: int, far: np.ndarray) ->
         nc = r.coarse_length[c]
         s = r.coarse_start[c]
         base = zero - nf - stride * nc  # the oldest coarse lag, nf + stride * (nc - j) for the j-th stored
-        for j in range(nc):
+        for j in range(0, nc - 1, 2):  # every coarse lag is at least the block (block_length): all far
             k0 = s + j * n_rows
-            i0 = base + stride * j
-            w = coarse[k0 : k0 + n_rows]  # (a slice: numba vectorises it, not an offset index)
-            for b in range(n_block):
-                u = history[i0 + b]
-                a = acc[b]
-                for k in range(n_rows):
-                    a[k] += w[k] * u
+            w1, w2 = coarse[k0 : k0 + n_rows], coarse[k0 + n_rows : k0 + 2 * n_rows]
+            _add_pair(acc, w1, w2, history, base + stride * j, base + stride * (j + 1), 0, n_block)
+        if nc % 2:
+            k0 = s + (nc - 1) * n_rows
+            _add_one(acc, coarse[k0 : k0 + n_rows], history, base + stride * (nc - 1), 0, n_block)
         s = r.fine_start[c]
-        base = zero - nf  # the oldest fine lag, nf - j for the j-th stored
-        for j in range(nf):
+        base = zero - nf  # the oldest fine lag, nf - j for the j-th stored; far for the targets b < nf - j
+        for j in range(0, nf - 1, 2):
             k0 = s + j * n_rows
-            w = fine[k0 : k0 + n_rows]
-            for b in range(min(n_block, nf - j)):  # far: lag nf - j > b
-                u = history[base + j + b]
-                a = acc[b]
-                for k in range(n_rows):
-                    a[k] += w[k] * u
+            w1, w2 = fine[k0 : k0 + n_rows], fine[k0 + n_rows : k0 + 2 * n_rows]
+            both = min(n_block, nf - j - 1)
+            _add_pair(acc, w1, w2, history, base + j, base + j + 1, 0, both)
+            _add_one(acc, w1, history, base + j, both, min(n_block, nf - j))
+        if nf % 2:
+            k0 = s + (nf - 1) * n_rows
+            _add_one(acc, fine[k0 : k0 + n_rows], history, base + nf - 1, 0, min(n_block, 1))
         for b in range(n_block):
             for k in range(n_rows):
                 far[b, lo + k] = acc[b, k]
