@@ -10,8 +10,11 @@ target step n + b (b = 1 ... B) with velocities up to u_n are its lags l >= b. T
 B targets in one pass over the kernel, each kernel value multiplying the B velocities it meets (a matrix-matrix
 product instead of B matrix-vector products; the kernel is read once per block). The *near* terms, lags 1 ... b-1
 (velocities of the block itself, known only as it proceeds), are added step by step. The coarse tail's lags are all
-at least B (``block_length``), so they are all far. Each entry's sum runs over its lags oldest first in both the
-block and the step-by-step form (a block of one step), so the two agree to rounding.
+at least B (``block_length``), so they are all far. Each entry's sum runs over its lags oldest first (two at a
+time) in both the block and the step-by-step form (a block of one step), so the two agree to rounding. On the
+default scene the history costs about 50 us of CPU per step in blocks of 32, against about 270 us for the former
+step-by-step sum (measured on a loaded machine; blocks of 16 to 128 within 15 %: the far sums are then bound by
+the multiply-adds, not by memory).
 """
 
 from __future__ import annotations
