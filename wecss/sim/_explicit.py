@@ -32,9 +32,8 @@ from ._integrators import (
     _out_of_bounds,
     _passes_stroke_limit,
     _record,
-    memory_advance,
-    memory_history,
 )
+from ._memory import block_history, memory_advance
 
 MAX_ITERATION_FACTOR: float = 0.95
 """Largest spectral radius of the added-mass iteration a run starts with: at 0.95 a 1 % tolerance takes about 90
@@ -110,11 +109,11 @@ def beeman_explicit_chunk(
     change is below ``settings.tol`` of their size (the paper: 1 %). No implicit fallback: a step whose iteration
     does not converge within ``settings.max_iterations`` reports CORRECTOR_FAILED."""
     h, tol, max_iter, bounded, bound = settings
-    q, v, acc, acc_prev, z, u_now, buf, pos, pto_now = state
+    q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, far = state
     n_steps = excitation.shape[0] - 1
     for k in range(n_steps):
         n1 = step0 + k + 1
-        hist = memory_history(r, z, u_now, buf, pos[0])
+        hist = block_history(r, z, u_now, buf, pos[0], far, (n1 - 1) % far.shape[0])
         base = excitation[k + 1] + hist
         q1 = integrate_configuration(p, q, h * v + h * h / 6.0 * (4.0 * acc - acc_prev))
         if not np.all(np.isfinite(q1)):

@@ -26,7 +26,6 @@ import numpy as np
 from ..compiled import (
     Plant,
     RadiationArrays,
-    RadiationKind,
     Workspace,
     configuration_rate,
     configure,
@@ -35,9 +34,10 @@ from ..compiled import (
     matvec,
     matvec_add,
     normalise_quaternions,
-    reduction_kernel,
     respond,
 )
+from ._memory import block_history, memory_advance
+from ._memory import memory_history as memory_history  # (the step-by-step history, for the tests)
 
 
 class LoopStatus(IntEnum):
@@ -97,8 +97,10 @@ class StepSettings(NamedTuple):
 class LoopState(NamedTuple):
     """The state the integrators advance in place: configuration ``q``, velocities ``v``, accelerations ``acc``
     and those of the step before ``acc_prev`` (Beeman), complex radiation states ``z``, the newest hydro velocity
-    ``u_now`` and the convolution's velocity ring buffer ``buf`` with its position ``pos`` (1,), and ``pto_now``
-    (3, n_pto): PTO strokes, rates and forces at the current state (what controllers measure)."""
+    ``u_now`` and the convolution's velocity ring buffer ``buf`` with its position ``pos`` (1,), ``pto_now``
+    (3, n_pto): PTO strokes, rates and forces at the current state (what controllers measure), and ``far`` the
+    convolution's far sums of the current block (``wecss.sim._memory``; a block of ``far.shape[0]`` steps starts
+    at every global step that is a multiple of it)."""
 
     q: np.ndarray
     v: np.ndarray
@@ -109,84 +111,12 @@ class LoopState(NamedTuple):
     buf: np.ndarray
     pos: np.ndarray
     pto_now: np.ndarray
+    far: np.ndarray
 
 
 ACCELERATION_FLOOR: float = 1e-11
 """Absolute floor [m/s^2 or rad/s^2] of the corrector's convergence test: changes of the accelerations below it are
 round-off (static loads of order m g cancel in them), so a body at rest converges too."""
-
-
-@reduction_kernel
-def _convolve(r: RadiationArrays, buf: np.ndarray, pos: int, n_h: int) -> np.ndarray:
-    """Weighted sum of the past velocities, column by column: each past velocity of a radiating DOF is read once
-    and multiplies the (contiguous) kernel values of all the rows it drives."""
-    out = np.zeros(n_h)
-    zero = pos + r.depth + 1  # lag l sits in column zero - l (lag 1: the newest stored velocity)
-    for c in range(n_h):
-        lo = r.col[c]
-        n_rows = r.col[c + 1] - lo
-        if n_rows == 0:
-            continue
-        history = buf[c]
-        acc = np.zeros(n_rows)
-        nf = r.fine_length[c]
-        s = r.fine_start[c]
-        base = zero - nf  # column of the oldest fine lag
-        for j in range(nf):
-            u = history[base + j]
-            k0 = s + j * n_rows
-            for k in range(n_rows):
-                acc[k] += r.fine[k0 + k] * u
-        nc = r.coarse_length[c]
-        s = r.coarse_start[c]
-        base = zero - nf - r.stride * nc
-        for j in range(nc):
-            u = history[base + r.stride * j]
-            k0 = s + j * n_rows
-            for k in range(n_rows):
-                acc[k] += r.coarse[k0 + k] * u
-        for k in range(n_rows):
-            out[r.row[lo + k]] += acc[k]
-    return out
-
-
-@kernel
-def memory_history(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, buf: np.ndarray, pos: int) -> np.ndarray:
-    """Memory force at the end of the coming step without the newest-velocity term (world axes) [N, N m]."""
-    n_h = u_now.shape[0]
-    out = np.zeros(n_h)
-    if r.kind == RadiationKind.STATE_SPACE:
-        matvec(r.history_state, z.view(np.float64), out)
-        matvec_add(r.history_input, u_now, out)
-        return out
-    if r.kind == RadiationKind.CONVOLUTION:
-        return _convolve(r, buf, pos, n_h)
-    return out
-
-
-@kernel
-def _advance_states(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray) -> None:
-    """z <- e^{lambda h} z + hold0 u_now + hold1 u_new, on the real and imaginary parts (``r.hold_real``)."""
-    n_h = u_now.shape[0]
-    both = np.empty(2 * n_h)
-    both[:n_h] = u_now
-    both[n_h:] = u_new
-    z *= r.decay
-    matvec_add(r.hold_real, both, z.view(np.float64))
-
-
-@kernel
-def memory_advance(
-    r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray, buf: np.ndarray, pos: np.ndarray
-) -> None:
-    """Move the memory over a completed step (states, or the velocity ring buffer, one row per DOF)."""
-    if r.kind == RadiationKind.STATE_SPACE:
-        _advance_states(r, z, u_now, u_new)
-    elif r.kind == RadiationKind.CONVOLUTION:
-        k = (pos[0] + 1) % r.depth
-        buf[:, k] = u_new
-        buf[:, k + r.depth] = u_new
-        pos[0] = k
 
 
 @kernel
@@ -273,7 +203,7 @@ def beeman_chunk(
     velocity's (:func:`respond`). Returns (status, global step of the failure).
     """
     h, tol, max_iter, bounded, bound = settings
-    q, v, acc, acc_prev, z, u_now, buf, pos, pto_now = state
+    q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, far = state
     nv = v.shape[0]
     n_steps = excitation.shape[0] - 1
     a1 = np.empty(nv)
@@ -282,7 +212,7 @@ def beeman_chunk(
     rad = np.empty(u_now.shape[0])
     for k in range(n_steps):
         n1 = step0 + k + 1
-        hist = memory_history(r, z, u_now, buf, pos[0])
+        hist = block_history(r, z, u_now, buf, pos[0], far, (n1 - 1) % far.shape[0])
         base = excitation[k + 1] + hist
         dv = h * v + h * h / 6.0 * (4.0 * acc - acc_prev)
         q1 = integrate_configuration(p, q, dv)

@@ -20,6 +20,7 @@ from ._control import ControlLoop
 from ._explicit import MAX_ITERATION_FACTOR, beeman_explicit_chunk, iteration_factor, split_added_mass
 from ._guards import check_rk4, farthest_body, stiff_pto_hint, translation_bound
 from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chunk, rk4_chunk, state_rates
+from ._memory import far_sums_array
 from ._progress import Progress
 from ._result import Record, grouped_hydro_order, stats_start, window_statistics
 
@@ -201,7 +202,7 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     buf[:, 0] = buf[:, r.depth] = u0
     pos = np.zeros(1, dtype=np.int64)
     pto_now = np.stack([x0, xd0, f0])
-    state = LoopState(q, v, acc, acc_prev, z, u_now, buf, pos, pto_now)
+    state = LoopState(q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, far_sums_array(r))
     settings = StepSettings(
         h, scene.solver.corrector_tol, scene.solver.max_corrector_iterations, compiled.bounded, scene.solver.angle_bound
     )
