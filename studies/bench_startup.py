@@ -114,7 +114,8 @@ def main(argv: list[str] | None = None) -> int:
     lines = [
         SECTION,
         "",
-        f"`python studies/bench_startup.py` on {platform.machine()}, {os.cpu_count()} cores shared with other jobs, "
+        f"`python studies/bench_startup.py` on {platform.machine()}, {os.cpu_count()} cores, load average "
+        f"{os.getloadavg()[0]:.1f} at the end, "
         f"Python {platform.python_version()}, OPENBLAS_NUM_THREADS=1, {when}; medians of {repeats} runs, each "
         "import and command in a fresh process, numba cache warm.",
         "",
