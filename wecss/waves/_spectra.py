@@ -114,7 +114,13 @@ class Jonswap:
         return scale * _jonswap_shape(omega, self.omega_p, float(self.gamma))
 
     def moment(self, n: int) -> float:
-        """m_n, exact to quadrature accuracy (relative 1e-12)."""
+        """m_n, exact to quadrature accuracy (relative 1e-14), for n <= 3.
+
+        Raises
+        ------
+        ValueError
+            For n >= 4: the moment is infinite (the spectrum's tail falls as omega^-5).
+        """
         return (
             self.hs**2
             / 16
