@@ -2,8 +2,8 @@
 ``wecss run`` command on the embedded default scene (warm numba cache), ``compile_scene`` of a second sea state of
 the same device, and the cost per step against the run length (100 Tp and 500 Tp: the wave components grow with
 the duration, d_omega = 2 pi / duration). Medians of repeated runs, each import and command in a fresh process,
-OPENBLAS_NUM_THREADS=1; wall and CPU time. Writes the section "Start-up, whole command and run length" of
-``docs/benchmarks.md``.
+OPENBLAS_NUM_THREADS=1; wall and CPU time; and the command step by step (CPU time of each step, with and without
+dask visible to xarray). Writes the section "Start-up, whole command and run length" of ``docs/benchmarks.md``.
 
     python studies/bench_startup.py           # full: 5 repeats
     python studies/bench_startup.py --quick   # 1 repeat, a 10 Tp scene instead of the default command; temp folder
@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import datetime
+import json
 import os
 import platform
 import resource
@@ -44,6 +45,54 @@ def wall(command: list[str], repeats: int, cwd: Path, before: Callable[[], None]
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpus.append(after.ru_utime - usage.ru_utime + after.ru_stime - usage.ru_stime)
     return float(np.median(runs)), float(np.median(cpus))
+
+
+STAGES = """
+import json, sys, time
+if sys.argv[3] == "hidden":  # as on an install without the dask extra: xarray then imports no dask
+    sys.modules["dask"] = sys.modules["distributed"] = None
+cpu = [time.process_time()]
+def mark():
+    cpu.append(time.process_time())
+from wecss.results import plot_summary, save
+from wecss.sim import Scene, compile_scene, default_scene_path, simulate
+mark()
+scene = Scene.from_toml(sys.argv[1])
+compiled = compile_scene(scene)
+mark()
+ds = simulate(compiled, progress=False)
+mark()
+save(ds, sys.argv[2] + ".nc")
+mark()
+plot_summary(ds, sys.argv[2] + ".png")
+mark()
+loaded = [m for m in ("dask.array", "distributed", "numba", "scipy.signal", "scipy.integrate") if sys.modules.get(m)]
+print(json.dumps({"cpu": [b - a for a, b in zip(cpu, cpu[1:])], "loop": ds.attrs["run_time_s"], "loaded": loaded}))
+"""
+"""The command's steps (as ``wecss run`` takes them) with the CPU time [s] of each, in a fresh process:
+argv scene, output stem, "hidden" to hide dask from xarray."""
+
+STAGE_NAMES = (
+    "imports (wecss.results, wecss.sim)",
+    "compile_scene (database read included)",
+    "simulate: loading numba's cached kernels, the time loop, the Dataset",
+    "save (netCDF)",
+    "summary plot (matplotlib import included)",
+)
+
+
+def stages(scene: Path, work: Path, repeats: int, hidden: bool) -> tuple[list[float], float, list[str]]:
+    """Median CPU time of each of the command's steps [s], the median time loop (wall, as the result records
+    it) [s] and the heavy modules the run loaded; fresh processes, numba cache warm."""
+    runs, loops, loaded = [], [], []
+    for _ in range(repeats):
+        command = [sys.executable, "-c", STAGES, str(scene), str(work / "s"), "hidden" if hidden else "visible"]
+        out = subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True, text=True)
+        data = json.loads(out.stdout.strip().splitlines()[-1])
+        runs.append(data["cpu"])
+        loops.append(data["loop"])
+        loaded = data["loaded"]
+    return [float(v) for v in np.median(runs, axis=0)], float(np.median(loops)), loaded
 
 
 def in_process(repeats: int, quick: bool) -> dict[str, float]:
@@ -105,6 +154,8 @@ def main(argv: list[str] | None = None) -> int:
             (work / name).unlink(missing_ok=True)
 
     rows.append((label, *wall(command, repeats, work, fresh), "3 s"))
+    scene_file = scene if args.quick else ROOT / "wecss" / "data" / "scenes" / "default.toml"
+    breakdown = {hidden: stages(scene_file, work, repeats, hidden) for hidden in (False, True)}
     extra = in_process(repeats, args.quick)
     for method in ("state_space", "convolution"):
         name = f"`compile_scene` of a second sea state (m4-134, {method.replace('_', ' ')})"
@@ -129,6 +180,22 @@ def main(argv: list[str] | None = None) -> int:
         "| duration | wave components | time loop per step |",
         "|---|---|---|",
         *[f"| {d} | {extra[f'components {d}']:.0f} | {extra[f'step {d}'] * 1e6:.1f} us |" for d in durations],
+        "",
+        "The same command step by step (CPU time of each step in a fresh process, medians; the time loop is the "
+        "result's run_time_s, wall). With the dask extra installed xarray imports dask.array when it makes its "
+        "first variable and distributed when it writes a netCDF file (to ask for a dask scheduler); the second "
+        "column hides dask from xarray, as on an install without that extra:",
+        "",
+        "| step | CPU time | CPU time, dask hidden |",
+        "|---|---|---|",
+        *[
+            f"| {name} | {breakdown[False][0][k]:.2f} s | {breakdown[True][0][k]:.2f} s |"
+            for k, name in enumerate(STAGE_NAMES)
+        ],
+        f"| all steps | {sum(breakdown[False][0]):.2f} s | {sum(breakdown[True][0]):.2f} s |",
+        f"| (the time loop, inside simulate) | {breakdown[False][1]:.2f} s | {breakdown[True][1]:.2f} s |",
+        "",
+        f"Loaded by the run: {', '.join(breakdown[False][2])}; with dask hidden: {', '.join(breakdown[True][2])}.",
         "",
     ]
     text = "\n".join(lines)

@@ -10,7 +10,7 @@ import xarray as xr
 
 from tests.sim.scenes import scene
 from wecss.results import mean_power, plot_summary
-from wecss.results._summary_plot import scaled_unit
+from wecss.results._summary_plot import scaled_unit, welch_density
 from wecss.sim import simulate
 
 
@@ -114,3 +114,17 @@ def test_rotary_and_linear_strokes_get_axes_of_their_own(tmp_path):
         assert _legend_texts(fig.axes[1]) == ["pto_3", "strut"]
     finally:
         plt.close(fig)
+
+
+@pytest.mark.parametrize(("n", "nperseg"), [(10_000, 3333), (9_999, 3333), (101, 33), (64, 16), (17, 16)])
+def test_the_recorded_spectrum_is_scipys_welch(n, nperseg):
+    """The plot's Welch estimate (matplotlib's mlab) equals scipy.signal.welch with its defaults (periodic Hann,
+    half overlap, mean removed per segment, one-sided density) to round-off, odd and even segment lengths."""
+    from scipy.signal import welch
+
+    rng = np.random.default_rng(n)
+    values = 0.02 * np.sin(0.3 * np.arange(n)) + 1e-3 * rng.standard_normal(n).cumsum() + 0.5  # a mean, a drift
+    expected_freq, expected = welch(values, fs=1 / 0.006, nperseg=nperseg)
+    freq, density = welch_density(values, 0.006, nperseg)
+    np.testing.assert_array_equal(freq, expected_freq)
+    np.testing.assert_allclose(density, expected, rtol=1e-12, atol=1e-14 * expected.max())

@@ -35,6 +35,30 @@ def test_spectrum_integrates_to_hs_squared_over_16(gamma: float) -> None:
     assert hm0(s) == pytest.approx(0.04, rel=1e-12)
 
 
+@pytest.mark.parametrize("n", [-2, -1, 0, 1, 2, 3])
+def test_spectral_moments_of_the_shape(n: int) -> None:
+    """Pierson-Moskowitz (gamma 1): int w^(n-5) exp(-1.25 w^-4) dw = Gamma((4 - n) / 4) 1.25^((n - 4) / 4) / 4 in
+    closed form; JONSWAP: scipy's adaptive quadrature (to 1e-13) on the same pieces."""
+    import math
+
+    from scipy.integrate import quad
+
+    from wecss.waves._spectra import _jonswap_shape, _shape_moment
+
+    closed = math.gamma((4 - n) / 4) * 1.25 ** ((n - 4) / 4) / 4
+    assert _shape_moment(n, 1.0) == pytest.approx(closed, rel=1e-13)
+    for gamma in (1.5, 3.3, 7.0, 20.0):
+
+        def integrand(w: float, gamma: float = gamma) -> float:
+            return float(w**n * _jonswap_shape(np.array([w]), 1.0, gamma)[0])
+
+        pieces = ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 3.0), (3.0, np.inf))
+        reference = sum(quad(integrand, lo, hi, limit=200, epsabs=0.0, epsrel=1e-13)[0] for lo, hi in pieces)
+        assert _shape_moment(n, gamma) == pytest.approx(reference, rel=1e-13)
+    with pytest.raises(ValueError, match="infinite"):
+        _shape_moment(4, 3.3)
+
+
 def test_gamma_one_is_pierson_moskowitz_closed_form() -> None:
     hs, tp = 2.5, 9.0
     wp = 2 * np.pi / tp

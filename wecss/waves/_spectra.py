@@ -39,19 +39,33 @@ def _jonswap_shape(omega: np.ndarray, omega_p: float, gamma: float) -> np.ndarra
     return out
 
 
+_GAUSS_LEGENDRE = np.polynomial.legendre.leggauss(100)
+"""Nodes and weights on [-1, 1] of the quadrature of :func:`_shape_moment` (100 points per piece)."""
+
+
 @lru_cache(maxsize=256)
 def _shape_moment(n: int, gamma: float) -> float:
-    """int omega^n shape(omega) d omega for omega_p = 1 (scale-free), by adaptive quadrature."""
+    """int omega^n shape(omega) d omega for omega_p = 1 (scale-free), n <= 3, to a relative 1e-14.
 
-    def f(w: float) -> float:
-        return float(w**n * _jonswap_shape(np.array([w]), 1.0, gamma)[0])
+    Gauss-Legendre on the pieces [0, 0.5], [0.5, 1], [1, 1.5], [1.5, 3] (smooth on each: the peak width changes
+    at omega = 1) and on the tail (3, inf) mapped to u = 3 / omega in (0, 1), where the integrand is
+    3^(n - 4) u^(3 - n) times a factor going to 1. (numpy only: scipy.integrate.quad costs 0.07-0.2 s at import.)
 
-    from scipy.integrate import quad  # lazy: scipy.integrate costs ~0.2 s at import
-
+    Raises
+    ------
+    ValueError
+        For n >= 4: the tail omega^(n - 5) makes the moment infinite.
+    """
+    if n >= 4:
+        raise ValueError(f"the JONSWAP spectral moment m_{n} is infinite (tail omega^-5); n must be <= 3")
+    nodes, weights = _GAUSS_LEGENDRE
     total = 0.0
-    for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 3.0), (3.0, np.inf)):
-        value, _ = quad(f, lo, hi, limit=200, epsabs=0.0, epsrel=1e-12)
-        total += value
+    for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 3.0)):
+        w = 0.5 * (hi - lo) * nodes + 0.5 * (hi + lo)
+        total += 0.5 * (hi - lo) * float(np.sum(weights * w**n * _jonswap_shape(w, 1.0, gamma)))
+    u = 0.5 * nodes + 0.5
+    w = 3.0 / u
+    total += 0.5 * float(np.sum(weights * w**n * _jonswap_shape(w, 1.0, gamma) * 3.0 / u**2))
     return total
 
 
@@ -100,7 +114,13 @@ class Jonswap:
         return scale * _jonswap_shape(omega, self.omega_p, float(self.gamma))
 
     def moment(self, n: int) -> float:
-        """m_n, exact to quadrature accuracy (relative 1e-12)."""
+        """m_n, exact to quadrature accuracy (relative 1e-14), for n <= 3.
+
+        Raises
+        ------
+        ValueError
+            For n >= 4: the moment is infinite (the spectrum's tail falls as omega^-5).
+        """
         return (
             self.hs**2
             / 16
