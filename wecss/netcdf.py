@@ -217,21 +217,18 @@ class AppendingWriter:
         replace the parts') and rename the file over the target; returns the target."""
         if self._nc is None:
             raise RuntimeError(f"nothing was written to {str(self.partial)!r}")
-        self._nc.close()
-        self._nc = None
         split = split_complex(rest)
         with _interrupts_held():
+            for name in self._nc.ncattrs():  # the parts' attributes give way to the whole's (in its order)
+                self._nc.delncattr(name)
+            self._nc.close()
+            self._nc = None
             split.to_netcdf(
                 self.partial,
                 mode="a",
                 engine="netcdf4",
                 encoding=storage_encoding(split, compress=self.compress, float32=self.float32) or None,
             )
-            import netCDF4
-
-            with netCDF4.Dataset(self.partial, "a") as nc:
-                for name in set(nc.ncattrs()) - {str(k) for k in split.attrs}:
-                    nc.delncattr(name)
             os.replace(self.partial, self.target)
         return self.target
 

@@ -227,10 +227,11 @@ def statistics_dataset(compiled: CompiledScene, record: Record, motion: list[str
 
 
 def series_variables(
-    compiled: CompiledScene, record: Record
+    compiled: CompiledScene, record: Record, elevation: np.ndarray | None = None
 ) -> tuple[dict[str, Any], dict[str, Any], tuple[np.ndarray, np.ndarray] | None]:
     """The time-series variables and their coordinates of the output groups (``loads`` aside) and the poses
-    when they were computed (for the notes)."""
+    when they were computed (for the notes). ``elevation``: the ``elevation`` group's values at ``record.time``
+    when the caller has them (:func:`elevation_series`)."""
     scene = compiled.scene
     groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
     names, angular = dof_kinds(compiled)
@@ -290,9 +291,7 @@ def series_variables(
             ("hydro_dof_linear", "hydro_dof_angular"),
         )
     if "elevation" in groups and n_t:
-        eta = compiled.waves.elevation(record.time) if compiled.waves is not None else np.zeros(n_t)
-        if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
-            eta = eta * Ramp(scene.sea.ramp_s)(record.time)
+        eta = elevation_series(compiled, record.time) if elevation is None else elevation
         data["wave_elevation"] = (("time",), eta)
     known = None  # the poses, computed once for the output and the notes
     if "poses" in groups and n_t:
@@ -308,6 +307,17 @@ def series_variables(
         if any(dim in v[0] for v in data.values()):
             coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
     return data, coords, known
+
+
+def elevation_series(compiled: CompiledScene, time: np.ndarray) -> np.ndarray:
+    """The undisturbed elevation at ``time`` [m] as the run applied it (with the start ramp). Its evaluation
+    depends on the whole of ``time`` (one FFT where the record is periodic, else a recurrence): to round-off, and
+    exactly when evaluated on the same times."""
+    scene = compiled.scene
+    eta = compiled.waves.elevation(time) if compiled.waves is not None else np.zeros(time.size)
+    if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
+        eta = eta * Ramp(scene.sea.ramp_s)(time)
+    return eta
 
 
 def _pto_coordinates(compiled: CompiledScene) -> dict[str, Any]:

@@ -21,7 +21,7 @@ from ..attributes import apply_attrs
 from ..compiled import CompiledScene, poses
 from ..netcdf import AppendingWriter
 from ._guards import MotionSummary
-from ._result import Record, series_variables, statistics_dataset
+from ._result import Record, elevation_series, series_variables, statistics_dataset
 
 STREAM_STEPS: int = 10_000
 """Steps between two parts written to the file (at most this many are lost to a crash; the buffers hold about
@@ -44,7 +44,11 @@ class ResultStream:
         self.n_save = compiled.n_steps // outputs.every + 1
         self.writer = AppendingWriter(path, self.n_save, compress=compress, float32=float32)
         self.motion = MotionSummary(compiled, self.n_save)
-        self.poses = "poses" in outputs.variables
+        # the elevation of the whole run (8 bytes per saved step), evaluated as build_result does (one FFT over
+        # the record's times where it is periodic): the file's values are those of a whole run, not round-off apart
+        self.elevation: np.ndarray | None = None
+        if "elevation" in outputs.variables:
+            self.elevation = elevation_series(compiled, np.arange(self.n_save) * self.every * compiled.dt)
 
     @property
     def rows(self) -> int:
@@ -55,7 +59,9 @@ class ResultStream:
         """The next saved rows (``part.time`` their times)."""
         if not part.time.size:
             return
-        data, coords, known = series_variables(self.compiled, part)
+        rows = slice(self.writer.rows, self.writer.rows + part.time.size)
+        eta = None if self.elevation is None else self.elevation[rows]
+        data, coords, known = series_variables(self.compiled, part, eta)
         if known is None:  # the notes read the poses; computed here when no output has them
             known = poses(self.compiled.plant, np.ascontiguousarray(part.q))
         self.motion.add(part.q, known)
