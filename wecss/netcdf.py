@@ -119,6 +119,9 @@ def write_netcdf(
     folder = target.parent
     remove_stale_temporaries(target)
     split = split_complex(ds)
+    # a whole Dataset has fixed dimensions: one read from a file written part by part (AppendingWriter) would
+    # otherwise keep its unlimited time dimension, whose default chunks are one row each once re-encoded
+    split.encoding = {k: v for k, v in split.encoding.items() if k != "unlimited_dims"}
     encoding = storage_encoding(split, compress=compress, float32=float32) or None
     with _interrupts_held() as interrupted:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.", suffix=".tmp", dir=folder)
@@ -140,6 +143,10 @@ def write_netcdf(
 
 CHUNK_VALUES = 2**15
 """Values per chunk (256 kB of float64) of a variable on the unlimited dimension of a file written part by part."""
+
+
+CHUNK_CACHE_CHUNKS = 4
+"""Chunks of each variable the netCDF library keeps in memory while a file is appended to (AppendingWriter)."""
 
 
 class AppendingWriter:
@@ -211,6 +218,11 @@ class AppendingWriter:
         part = part.assign_attrs({**part.attrs, self.status_attr: status})
         part.to_netcdf(self.partial, engine="netcdf4", unlimited_dims=[self.dim], encoding=encoding)
         self._nc = netCDF4.Dataset(self.partial, "a")
+        for variable in self._nc.variables.values():
+            # the library's chunk cache (64 MB per variable in netCDF-C 4.9+) would keep each written chunk:
+            # memory would grow with the file; a few chunks are enough to append
+            if self.dim in variable.dimensions:
+                variable.set_var_chunk_cache(size=CHUNK_CACHE_CHUNKS * CHUNK_VALUES * variable.dtype.itemsize)
 
     def finish(self, rest: xr.Dataset) -> Path:
         """Add ``rest`` (variables without the dimension, their coordinates, and the global attributes, which

@@ -11,7 +11,7 @@ import xarray as xr
 
 import wecss.sim._nonlinear as nonlinear
 from tests.sim.scenes import held, scene
-from wecss.results import save
+from wecss.results import open_result, save
 from wecss.sim import SimulationDiverged, compile_scene, simulate
 from wecss.sim._simulate import streamed
 
@@ -84,6 +84,11 @@ def test_streamed_file_with_a_held_controller_and_storage_options(tmp_path, smal
         assert nc.dimensions["time"].isunlimited()
         assert nc["pto_power"].dtype == np.float32 and nc["pto_power"].filters()["zlib"]
         assert nc["time"].dtype == np.float64
+    # saved again, a streamed result is written as a whole one: fixed dimensions
+    save(open_result(tmp_path / "streamed.nc"), tmp_path / "again.nc", compress=4)
+    with netCDF4.Dataset(tmp_path / "again.nc") as nc:
+        assert not nc.dimensions["time"].isunlimited()
+    assert (tmp_path / "again.nc").stat().st_size <= 1.05 * (tmp_path / "streamed.nc").stat().st_size
 
 
 @pytest.mark.parametrize("method", ["linear", "frequency"])
