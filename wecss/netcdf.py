@@ -218,11 +218,11 @@ class AppendingWriter:
         part = part.assign_attrs({**part.attrs, self.status_attr: status})
         part.to_netcdf(self.partial, engine="netcdf4", unlimited_dims=[self.dim], encoding=encoding)
         self._nc = netCDF4.Dataset(self.partial, "a")
-        for variable in self._nc.variables.values():
+        for stored in self._nc.variables.values():
             # the library's chunk cache (64 MB per variable in netCDF-C 4.9+) would keep each written chunk:
             # memory would grow with the file; a few chunks are enough to append
-            if self.dim in variable.dimensions:
-                variable.set_var_chunk_cache(size=CHUNK_CACHE_CHUNKS * CHUNK_VALUES * variable.dtype.itemsize)
+            if self.dim in stored.dimensions:
+                stored.set_var_chunk_cache(size=CHUNK_CACHE_CHUNKS * CHUNK_VALUES * stored.dtype.itemsize)
 
     def finish(self, rest: xr.Dataset) -> Path:
         """Add ``rest`` (variables without the dimension, their coordinates, and the global attributes, which

@@ -247,8 +247,9 @@ def run_fixed_step(compiled: CompiledScene, progress: bool, stream: ResultStream
     def part() -> Record:
         """The saved rows since the last part (their number is the store's save index)."""
         k = int(out.save_index[0])
-        arrays = (written + np.arange(k)) * every * h, out.q, out.v, out.a, out.x, out.xd, out.f, out.rad, out.exc
-        record = Record(*(values[:k] for values in arrays), out.stats, 0.0)
+        a, x, xd, f, rad, exc = (values[:k] for values in (out.a, out.x, out.xd, out.f, out.rad, out.exc))
+        time = (written + np.arange(k)) * every * h
+        record = Record(time, out.q[:k], out.v[:k], a, x, xd, f, rad, exc, out.stats, 0.0)
         record.hydro_order = hydro_order
         return record
 
