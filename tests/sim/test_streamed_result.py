@@ -146,6 +146,11 @@ def test_an_interrupted_run_leaves_a_partial_file(tmp_path, small_parts, monkeyp
         np.testing.assert_array_equal(ds.angle.values, whole.angle.values[: ds.sizes["time"]])
 
 
-def test_storage_options_need_a_path():
+def test_storage_options_need_a_path_and_are_checked_before_the_run(tmp_path):
     with pytest.raises(ValueError, match="give path"):
         simulate(scene("m4-111"), compress=4)
+    for method in ("beeman", "linear"):  # streamed or not
+        sc = scene("m4-111", solver={"method": method}, radiation={"method": "state_space"})
+        with pytest.raises(ValueError, match="zlib level"):
+            simulate(sc, path=tmp_path / "r.nc", compress=12)
+    assert not list(tmp_path.iterdir())

@@ -10,7 +10,7 @@ import xarray as xr
 
 from ..compiled import CompiledScene
 from ..control import Controller, attach_controller, compile_scene
-from ..netcdf import write_netcdf
+from ..netcdf import storage_encoding, write_netcdf
 from ..scene import Scene
 from ._frequency import run_frequency_domain
 from ._linear import simulate_linear
@@ -73,6 +73,7 @@ def simulate(
             f"compress={compress!r} and float32={float32!r} say how to write the result file: give path too "
             "(or save the returned Dataset with wecss.results.save)"
         )
+    storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuses bad options before the run
     if isinstance(scene, str | Path):
         scene = Scene.from_toml(scene)
     if isinstance(scene, CompiledScene):
