@@ -50,6 +50,7 @@ studies-quick: $(STAMP)
 	$(PY) studies/m4_paper.py --quick
 	$(PY) studies/bench_sweep.py --quick
 	$(PY) studies/notc.py --quick
+	$(PY) studies/bench_memory.py --quick
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

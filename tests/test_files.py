@@ -92,6 +92,7 @@ def test_os_errors_reach_the_user_without_a_traceback(tmp_path, capsys, monkeypa
         raise PermissionError(13, "Permission denied", str(tmp_path / "r.nc"))
 
     monkeypatch.setattr("wecss.results._io.write_netcdf", refuse)
+    monkeypatch.setattr("wecss.netcdf.AppendingWriter.append", refuse)  # wecss run streams its result
     scene = tmp_path / "s.toml"
     scene.write_text('[sea]\nduration = "2 Tp"\nramp = 0.0\n[outputs]\nvariables = ["pto"]\n')
     assert main(["run", str(scene), "-q", "-o", str(tmp_path / "r.nc")]) == 2

@@ -148,7 +148,7 @@ def _run(
     compress: int = 0,
     float32: bool = False,
 ) -> int:
-    from .results import plot_summary, save
+    from .results import plot_summary
     from .sim import Scene, default_scene_path, simulate
     from .sweep import apply_overrides
 
@@ -159,15 +159,15 @@ def _run(
     check_outputs({"result": (out, ".nc"), "picture": (picture, ".png")}, inputs=[path])
     if not quiet:
         print(f"scene {path}", file=sys.stderr)
-    ds = simulate(scene, progress=not quiet)
-    save(ds, out, compress=compress, float32=float32)
-    plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))
-    if plotted:  # the summary plot needs the elevation or the PTO series
-        import matplotlib.pyplot as plt
+    # written as the run goes (Beeman, RK4: streamed, memory flat); the series are read back for the plot alone
+    with simulate(scene, progress=not quiet, path=out, compress=compress, float32=float32) as ds:
+        plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))
+        if plotted:  # the summary plot needs the elevation or the PTO series
+            import matplotlib.pyplot as plt
 
-        fig = plot_summary(ds, picture)
-        plt.close(fig)
-    print(_summary(ds))
+            fig = plot_summary(ds, picture)
+            plt.close(fig)
+        print(_summary(ds))
     print(f"wrote {out}" + (f" and {picture}" if plotted else ""))
     return 0
 

@@ -17,9 +17,13 @@ import tempfile
 import threading
 from collections.abc import Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
+
+if TYPE_CHECKING:
+    import netCDF4
 
 COMPLEX_DIM = "complex"
 COMPLEX_COORD = ("re", "im")
@@ -63,11 +67,14 @@ COMPRESS_MIN_SIZE = 1024
 more than zlib saves on a few hundred values."""
 
 
-def storage_encoding(ds: xr.Dataset, *, compress: int | bool = 0, float32: bool = False) -> dict[str, dict]:
+def storage_encoding(
+    ds: xr.Dataset, *, compress: int | bool = 0, float32: bool = False, sizes: dict[str, int] | None = None
+) -> dict[str, dict]:
     """The netCDF encoding of every data variable of ``ds`` for a zlib level ``compress`` (0-9; True: 6, False: 0; on
     variables of at least :data:`COMPRESS_MIN_SIZE` values) and, with ``float32``, single-precision storage of the
     floating-point data variables (coordinates such as time keep their precision; values come back within float32
-    rounding, a relative 6e-8).
+    rounding, a relative 6e-8). ``sizes``: the lengths of dimensions of which ``ds`` holds a part (a file written
+    part by part), for the variables' whole sizes.
 
     Raises
     ------
@@ -82,7 +89,8 @@ def storage_encoding(ds: xr.Dataset, *, compress: int | bool = 0, float32: bool 
     encoding: dict[str, dict] = {}
     for name in ds.data_vars:
         entry: dict[str, object] = {}
-        if level and ds[name].size >= COMPRESS_MIN_SIZE:
+        size = int(np.prod([(sizes or {}).get(str(d), n) for d, n in ds[name].sizes.items()]))
+        if level and size >= COMPRESS_MIN_SIZE:
             entry.update(zlib=True, complevel=int(level))
         if float32 and np.issubdtype(ds[name].dtype, np.floating):
             entry["dtype"] = "float32"
@@ -107,14 +115,13 @@ def write_netcdf(
     ValueError
         For a ``compress`` level outside 0-9.
     """
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    if not folder.is_dir():
-        raise FileNotFoundError(f"folder {str(folder)!r} for {str(target)!r} does not exist")
-    if target.is_dir():
-        raise IsADirectoryError(f"{str(target)!r} is a folder; give a file name")
+    target = _target(path)
+    folder = target.parent
     remove_stale_temporaries(target)
     split = split_complex(ds)
+    # a whole Dataset has fixed dimensions: one read from a file written part by part (AppendingWriter) would
+    # otherwise keep its unlimited time dimension, whose default chunks are one row each once re-encoded
+    split.encoding = {k: v for k, v in split.encoding.items() if k != "unlimited_dims"}
     encoding = storage_encoding(split, compress=compress, float32=float32) or None
     with _interrupts_held() as interrupted:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.", suffix=".tmp", dir=folder)
@@ -131,6 +138,132 @@ def write_netcdf(
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
+    return target
+
+
+CHUNK_VALUES = 2**15
+"""Values per chunk (256 kB of float64) of a variable on the unlimited dimension of a file written part by part."""
+
+
+CHUNK_CACHE_CHUNKS = 4
+"""Chunks of each variable the netCDF library keeps in memory while a file is appended to (AppendingWriter)."""
+
+
+class AppendingWriter:
+    """A netCDF file written part by part along an unlimited dimension (a long run's time series, chunk by chunk
+    as it goes), complete and readable after every part.
+
+    The parts go to ``NAME.partial.nc`` next to the target, whose global attribute ``status_attr`` says how far it
+    got (``append``'s ``status``); :meth:`finish` adds the variables without the dimension and the global
+    attributes, removes the status and renames the file over the target (a previous file there stays until then).
+    :meth:`stop` leaves the partial file with a last status (the run failed or was interrupted). Each part is written
+    with Ctrl-C held, so an interrupt never leaves a damaged part. The stored values equal those that
+    :func:`write_netcdf` writes of the whole Dataset (the layout differs: chunks along the unlimited dimension).
+
+    Parameters
+    ----------
+    path : target file
+    length : int
+        The dimension's final length (for the compression threshold and the chunk sizes).
+    dim : str
+        The unlimited dimension; every part's variables on it have it first.
+    compress, float32 : as :func:`write_netcdf`
+    """
+
+    def __init__(
+        self,
+        path: str | os.PathLike[str],
+        length: int,
+        *,
+        dim: str = "time",
+        compress: int | bool = 0,
+        float32: bool = False,
+        status_attr: str = "run_status",
+    ) -> None:
+        self.target = _target(path)
+        storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuse bad options before any work
+        self.partial = self.target.with_name(f"{self.target.stem}.partial{self.target.suffix}")
+        self.length, self.dim, self.compress, self.float32 = length, dim, compress, float32
+        self.status_attr = status_attr
+        self.rows = 0
+        self._nc: netCDF4.Dataset | None = None
+
+    def append(self, part: xr.Dataset, status: str) -> None:
+        """Write the next rows: ``part``'s variables on the dimension (the first part also writes every other
+        variable, the coordinates and the global attributes of ``part``)."""
+        with _interrupts_held():
+            if self._nc is None:
+                self._create(part, status)
+            else:
+                k = part.sizes[self.dim]
+                for name, variable in part.variables.items():
+                    if self.dim in variable.dims:
+                        self._nc.variables[str(name)][self.rows : self.rows + k] = variable.values
+                self._nc.setncattr(self.status_attr, status)
+                self._nc.sync()
+            self.rows += part.sizes[self.dim]
+
+    def _create(self, part: xr.Dataset, status: str) -> None:
+        import netCDF4
+
+        for name, variable in part.variables.items():
+            if self.dim in variable.dims and variable.dims[0] != self.dim:
+                raise ValueError(f"variable {name!r} has {self.dim!r} as dimension {variable.dims.index(self.dim)}")
+        encoding = storage_encoding(part, compress=self.compress, float32=self.float32, sizes={self.dim: self.length})
+        for name, variable in part.variables.items():
+            if self.dim in variable.dims:
+                other = [int(n) for d, n in variable.sizes.items() if d != self.dim]
+                rows = max(1, min(self.length, CHUNK_VALUES // max(1, int(np.prod(other)))))
+                encoding.setdefault(str(name), {})["chunksizes"] = (rows, *other)
+        part = part.assign_attrs({**part.attrs, self.status_attr: status})
+        part.to_netcdf(self.partial, engine="netcdf4", unlimited_dims=[self.dim], encoding=encoding)
+        self._nc = netCDF4.Dataset(self.partial, "a")
+        for stored in self._nc.variables.values():
+            # the library's chunk cache (64 MB per variable in netCDF-C 4.9+) would keep each written chunk:
+            # memory would grow with the file; a few chunks are enough to append
+            if self.dim in stored.dimensions:
+                stored.set_var_chunk_cache(size=CHUNK_CACHE_CHUNKS * CHUNK_VALUES * stored.dtype.itemsize)
+
+    def finish(self, rest: xr.Dataset) -> Path:
+        """Add ``rest`` (variables without the dimension, their coordinates, and the global attributes, which
+        replace the parts') and rename the file over the target; returns the target."""
+        if self._nc is None:
+            raise RuntimeError(f"nothing was written to {str(self.partial)!r}")
+        split = split_complex(rest)
+        with _interrupts_held():
+            for name in self._nc.ncattrs():  # the parts' attributes give way to the whole's (in its order)
+                self._nc.delncattr(name)
+            self._nc.close()
+            self._nc = None
+            split.to_netcdf(
+                self.partial,
+                mode="a",
+                engine="netcdf4",
+                encoding=storage_encoding(split, compress=self.compress, float32=self.float32) or None,
+            )
+            os.replace(self.partial, self.target)
+        return self.target
+
+    def stop(self, status: str) -> Path | None:
+        """Leave the partial file with the last ``status`` (a failure or an interrupt); returns it (None when no
+        part was written)."""
+        if self._nc is None:
+            return None
+        with _interrupts_held():
+            self._nc.setncattr(self.status_attr, status)
+            self._nc.close()
+        self._nc = None
+        return self.partial
+
+
+def _target(path: str | os.PathLike[str]) -> Path:
+    """``path`` as a file to write, its folder checked."""
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise FileNotFoundError(f"folder {str(folder)!r} for {str(target)!r} does not exist")
+    if target.is_dir():
+        raise IsADirectoryError(f"{str(target)!r} is a folder; give a file name")
     return target
 
 

@@ -154,57 +154,79 @@ def motion_notes(
 ) -> list[str]:
     """Notes on the saved configurations ``q`` (n_t, nq): motion amplitudes against the bodies' size and a drift
     of the horizontal mean position. ``known``: the poses of ``q`` (positions, rotation vectors) when the caller
-    has them already (else they are computed here, in blocks)."""
-    if q.shape[0] < 2:
-        return []
-    names = list(compiled.device.model.body_names)
-    sizes = _sizes(compiled)
-    rest_pos, rest_rot = poses(compiled.plant, np.ascontiguousarray(compiled.q0[None]))
-
-    def pose(rows: slice) -> tuple[np.ndarray, np.ndarray]:
-        if known is not None:
-            return known[0][rows], known[1][rows]
-        return poses(compiled.plant, np.ascontiguousarray(q[rows]))
-
-    # poses in blocks of rows (a long record's poses would double its memory): largest rotation and vertical
-    # shift from the equilibrium, and the mean positions over the first and the last tenth of the record
-    tenth = max(1, q.shape[0] // 10)
-    angle = np.zeros(len(names))
-    shift = np.zeros(len(names))
+    has them already (else they are computed here, in blocks: a long record's poses would double its memory)."""
+    summary = MotionSummary(compiled, q.shape[0])
     for start in range(0, q.shape[0], POSE_BLOCK):
-        position, rotation = pose(slice(start, start + POSE_BLOCK))
-        angle = np.maximum(angle, np.linalg.norm(rotation - rest_rot, axis=-1).max(axis=0))
-        shift = np.maximum(shift, np.abs(position[..., 2] - rest_pos[..., 2]).max(axis=0))
-    head = pose(slice(None, tenth))[0][:, :, :2].mean(axis=0)
-    tail = pose(slice(q.shape[0] - tenth, None))[0][:, :, :2].mean(axis=0)
-    notes = []
-    big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
-    if big:
-        notes.append(
-            f"large rotations from the equilibrium (above {np.rad2deg(ROTATION_LIMIT):.3g} deg): {', '.join(big)}; "
-            "linear hydrodynamics lose accuracy"
-        )
-    # vertical only: horizontal motion of an unmoored body is mostly drift, noted below
-    big = [
-        f"{n} {s:.3g} m (size {sizes[n]:.3g} m)"
-        for n, s in zip(names, shift, strict=True)
-        if n in sizes and s > TRANSLATION_LIMIT * sizes[n]
-    ]
-    if big:
-        notes.append(
-            f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
-            f"{', '.join(big)}; linear hydrodynamics lose accuracy"
-        )
-    # only the horizontal directions nothing restores (a mooring or a joint to the ground holds the others)
-    drift = np.linalg.norm((tail - head) * unrestrained_directions(compiled), axis=-1)
-    far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
-    if far:
-        notes.append(
-            f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run "
-            f"({', '.join(far)}); nothing restores it: give the device a linear mooring ([[moorings]] in its "
-            "spec, docs/byo-bem.md) or a solver.translation_bound"
-        )
-    return notes
+        rows = slice(start, start + POSE_BLOCK)
+        summary.add(q[rows], None if known is None else (known[0][rows], known[1][rows]))
+    return summary.notes()
+
+
+class MotionSummary:
+    """What :func:`motion_notes` reads of a record, gathered from its rows in order, block by block (a run
+    streamed to its file never holds the whole record): the largest rotation and vertical shift of each body from
+    its equilibrium, and the sums of its horizontal positions over the first and the last tenth of the
+    ``n_rows`` saved rows."""
+
+    def __init__(self, compiled: CompiledScene, n_rows: int) -> None:
+        self.compiled, self.n_rows = compiled, n_rows
+        self.tenth = max(1, n_rows // 10)
+        self.seen = 0
+        n_body = len(compiled.device.model.body_names)
+        self.rest = poses(compiled.plant, np.ascontiguousarray(compiled.q0[None]))
+        self.angle, self.shift = np.zeros(n_body), np.zeros(n_body)
+        self.head, self.tail = np.zeros((n_body, 2)), np.zeros((n_body, 2))
+
+    def add(self, q: np.ndarray, known: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+        """The next rows ``q`` (k, nq) of the record, with their poses ``known`` when the caller has them."""
+        if not q.shape[0]:
+            return
+        position, rotation = known if known is not None else poses(self.compiled.plant, np.ascontiguousarray(q))
+        rest_pos, rest_rot = self.rest
+        self.angle = np.maximum(self.angle, np.linalg.norm(rotation - rest_rot, axis=-1).max(axis=0))
+        self.shift = np.maximum(self.shift, np.abs(position[..., 2] - rest_pos[..., 2]).max(axis=0))
+        index = self.seen + np.arange(q.shape[0])
+        self.head += position[index < self.tenth, :, :2].sum(axis=0)
+        self.tail += position[index >= self.n_rows - self.tenth, :, :2].sum(axis=0)
+        self.seen += q.shape[0]
+
+    def notes(self) -> list[str]:
+        """The notes (see :func:`motion_notes`) once every row was added."""
+        if self.n_rows < 2:
+            return []
+        compiled = self.compiled
+        names = list(compiled.device.model.body_names)
+        sizes = _sizes(compiled)
+        angle, shift = self.angle, self.shift
+        head, tail = self.head / self.tenth, self.tail / self.tenth
+        notes = []
+        big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
+        if big:
+            notes.append(
+                f"large rotations from the equilibrium (above {np.rad2deg(ROTATION_LIMIT):.3g} deg): {', '.join(big)}; "
+                "linear hydrodynamics lose accuracy"
+            )
+        # vertical only: horizontal motion of an unmoored body is mostly drift, noted below
+        big = [
+            f"{n} {s:.3g} m (size {sizes[n]:.3g} m)"
+            for n, s in zip(names, shift, strict=True)
+            if n in sizes and s > TRANSLATION_LIMIT * sizes[n]
+        ]
+        if big:
+            notes.append(
+                f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
+                f"{', '.join(big)}; linear hydrodynamics lose accuracy"
+            )
+        # only the horizontal directions nothing restores (a mooring or a joint to the ground holds the others)
+        drift = np.linalg.norm((tail - head) * unrestrained_directions(compiled), axis=-1)
+        far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
+        if far:
+            notes.append(
+                f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run "
+                f"({', '.join(far)}); nothing restores it: give the device a linear mooring ([[moorings]] in its "
+                "spec, docs/byo-bem.md) or a solver.translation_bound"
+            )
+        return notes
 
 
 #: Singular values of the static stiffness below this fraction of the largest are free directions.

@@ -23,6 +23,7 @@ from ._integrators import LoopState, LoopStatus, StepSettings, Store, beeman_chu
 from ._memory import far_sums_array
 from ._progress import Progress
 from ._result import Record, grouped_hydro_order, stats_start, window_statistics
+from ._stream import STREAM_STEPS, ResultStream
 
 CHUNK_STEPS: int = 2000
 """Steps per kernel call (progress is reported between chunks)."""
@@ -162,21 +163,26 @@ def _explicit_added_mass(compiled: CompiledScene) -> tuple[Plant, np.ndarray, fl
     return rigid, added, factor
 
 
-def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
-    """Beeman or RK4 (the scene's ``solver.method``) over every step."""
+def run_fixed_step(compiled: CompiledScene, progress: bool, stream: ResultStream | None = None) -> Record:
+    """Beeman or RK4 (the scene's ``solver.method``) over every step. With a ``stream``, the saved rows go to it
+    about every ``STREAM_STEPS`` steps and the loop's arrays hold only those since the last part (the Record
+    returned then has no saved rows: its statistics, counts and solver only)."""
     scene = compiled.scene
     p, r = compiled.plant, compiled.radiation
     h, n = compiled.dt, compiled.n_steps
     every = scene.outputs.every if not scene.outputs.statistics_only else 0
     n_save = n // every + 1 if every else 0
+    # a control period's chunk can pass the next part's step: room for both, and the row at step 0
+    chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
+    n_rows = min(n_save, (STREAM_STEPS + chunk) // every + 2) if stream is not None and every else n_save
     nq, nv, n_pto, n_h = compiled.q0.size, p.twists.shape[0], p.pto_kind.size, p.hydro_index.size
-    rows = _saved_rows(scene.outputs.variables, n_save)
+    rows = _saved_rows(scene.outputs.variables, n_rows)
     hydro_order = grouped_hydro_order(compiled)
     out = Store(
         every=every,
         stats_start=stats_start(compiled),
-        q=np.zeros((n_save, nq)),
-        v=np.zeros((n_save, nv)),
+        q=np.zeros((n_rows, nq)),
+        v=np.zeros((n_rows, nv)),
         a=np.zeros((rows["a"], nv)),
         x=np.zeros((rows["pto"], n_pto)),
         xd=np.zeros((rows["pto"], n_pto)),
@@ -224,7 +230,6 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     if rk4:
         check_rk4(compiled)
     # a controller without linear gains is called once per control period (chunk) and its force held over it
-    chunk = CHUNK_STEPS if compiled.linear_controller else scene.control_steps
     loop = None if compiled.linear_controller else ControlLoop.start(compiled)
 
     def full_state() -> np.ndarray:
@@ -236,6 +241,18 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
     excitation = _Excitation(compiled, 2 if rk4 else 1)  # (timed: it is part of the loop's work)
     done = 0
     calm = compiled.excitation is None
+    written, next_part = 0, STREAM_STEPS  # saved rows handed to the stream; the step of its next part
+    streaming = 0.0  # time spent deriving and writing the parts (not the loop's)
+
+    def part() -> Record:
+        """The saved rows since the last part (their number is the store's save index)."""
+        k = int(out.save_index[0])
+        a, x, xd, f, rad, exc = (values[:k] for values in (out.a, out.x, out.xd, out.f, out.rad, out.exc))
+        time = (written + np.arange(k)) * every * h
+        record = Record(time, out.q[:k], out.v[:k], a, x, xd, f, rad, exc, out.stats, 0.0)
+        record.hydro_order = hydro_order
+        return record
+
     while done < n:
         m = min(chunk, n - done)
         if loop is not None:
@@ -276,9 +293,16 @@ def run_fixed_step(compiled: CompiledScene, progress: bool) -> Record:
                 done,
                 {"q": q.copy(), "v": v.copy()},
             )
+        if stream is not None and n_save and (done >= next_part or done == n):
+            writing = _time.perf_counter()
+            stream.add(part())
+            streaming += _time.perf_counter() - writing
+            written += int(out.save_index[0])
+            out.save_index[0] = 0
+            next_part = done + STREAM_STEPS
         bar.update(done)
-    run_time = _time.perf_counter() - start
-    saved = np.arange(n_save) * every * h
+    run_time = _time.perf_counter() - start - streaming
+    saved = np.arange(0 if stream is not None else n_save) * every * h
     solver: dict[str, Any]
     if rk4:
         solver = {"solver": "rk4"}

@@ -194,16 +194,8 @@ def sea_state_attrs(compiled: CompiledScene) -> dict[str, Any]:
     return out
 
 
-def _notes(
-    compiled: CompiledScene, report: dict[str, Any], q: np.ndarray, known: tuple[np.ndarray, np.ndarray] | None
-) -> list[str]:
-    notes = [
-        *compiled.notes,
-        *fit_notes(compiled),
-        *step_notes(compiled),
-        *wave_notes(compiled),
-        *motion_notes(compiled, q, known),
-    ]
+def _notes(compiled: CompiledScene, report: dict[str, Any], motion: list[str]) -> list[str]:
+    notes = [*compiled.notes, *fit_notes(compiled), *step_notes(compiled), *wave_notes(compiled), *motion]
     if compiled.device.ptos and not compiled.linear_controller:
         steps = compiled.scene.control_steps
         notes.append(
@@ -221,6 +213,25 @@ def _notes(
 
 def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
     """The Dataset of a run from its raw record (see the module docstring)."""
+    data, coords, known = series_variables(compiled, record)
+    groups = set() if compiled.scene.outputs.statistics_only else set(compiled.scene.outputs.variables)
+    closure = _add_loads(data, coords, compiled, record) if "loads" in groups and record.time.size else None
+    return _with_statistics(compiled, record, data, coords, motion_notes(compiled, record.q, known), closure)
+
+
+def statistics_dataset(compiled: CompiledScene, record: Record, motion: list[str]) -> xr.Dataset:
+    """What :func:`build_result` adds to the time series: the statistics over the final window, the limits'
+    counts, the power bound and the attributes (``motion``: the notes on the record's motion, from
+    ``MotionSummary``); ``record`` needs only its ``stats``, ``limits``, ``run_time`` and ``solver``."""
+    return _with_statistics(compiled, record, {}, {}, motion, None)
+
+
+def series_variables(
+    compiled: CompiledScene, record: Record, elevation: np.ndarray | None = None
+) -> tuple[dict[str, Any], dict[str, Any], tuple[np.ndarray, np.ndarray] | None]:
+    """The time-series variables and their coordinates of the output groups (``loads`` aside) and the poses
+    when they were computed (for the notes). ``elevation``: the ``elevation`` group's values at ``record.time``
+    when the caller has them (:func:`elevation_series`)."""
     scene = compiled.scene
     groups = set() if scene.outputs.statistics_only else set(scene.outputs.variables)
     names, angular = dof_kinds(compiled)
@@ -251,6 +262,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         data.update(by_pto_kind(record.f, rotary, ("pto_torque", "pto_force"), ("time", "pto")))
         # absorbed power: the device spring's force -k x is conservative and left out
         data["pto_power"] = (("time", "pto"), -(record.f + compiled.plant.pto_spring * record.x) * record.xd)
+        coords.update(_pto_coordinates(compiled))
     if "excitation" in groups and n_t:
         _split(
             data,
@@ -279,9 +291,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
             ("hydro_dof_linear", "hydro_dof_angular"),
         )
     if "elevation" in groups and n_t:
-        eta = compiled.waves.elevation(record.time) if compiled.waves is not None else np.zeros(n_t)
-        if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
-            eta = eta * Ramp(scene.sea.ramp_s)(record.time)
+        eta = elevation_series(compiled, record.time) if elevation is None else elevation
         data["wave_elevation"] = (("time",), eta)
     known = None  # the poses, computed once for the output and the notes
     if "poses" in groups and n_t:
@@ -290,7 +300,44 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         data["body_rotation"] = (("time", "body", "axis"), rotation)
         coords["body"] = list(compiled.device.model.body_names)
         coords["axis"] = ["x", "y", "z"]
-    closure = _add_loads(data, coords, compiled, record) if "loads" in groups and n_t else None
+    for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
+        if any(dim in v[0] for v in data.values()):
+            coords[dim] = values
+    for dim, mask in (("hydro_dof_linear", ~stored_angular), ("hydro_dof_angular", stored_angular)):
+        if any(dim in v[0] for v in data.values()):
+            coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
+    return data, coords, known
+
+
+def elevation_series(compiled: CompiledScene, time: np.ndarray) -> np.ndarray:
+    """The undisturbed elevation at ``time`` [m] as the run applied it (with the start ramp). Its evaluation
+    depends on the whole of ``time`` (one FFT where the record is periodic, else a recurrence): to round-off, and
+    exactly when evaluated on the same times."""
+    scene = compiled.scene
+    eta = compiled.waves.elevation(time) if compiled.waves is not None else np.zeros(time.size)
+    if scene.sea.ramp_s > 0 and scene.solver.method != "frequency":  # as applied: with the start ramp
+        eta = eta * Ramp(scene.sea.ramp_s)(time)
+    return eta
+
+
+def _pto_coordinates(compiled: CompiledScene) -> dict[str, Any]:
+    """The ``pto`` dimension's names and the ``pto_kind`` coordinate."""
+    kinds = ["rotary" if kind == "rotary" else "linear" for kind in compiled.pto_kinds]
+    return {"pto": [p.name for p in compiled.device.ptos], "pto_kind": ("pto", kinds)}
+
+
+def _with_statistics(
+    compiled: CompiledScene,
+    record: Record,
+    data: dict[str, Any],
+    coords: dict[str, Any],
+    motion: list[str],
+    closure: float | None,
+) -> xr.Dataset:
+    """The Dataset of the variables ``data`` (the time series) with the statistics and the attributes."""
+    scene = compiled.scene
+    pto_names = [p.name for p in compiled.device.ptos]
+    rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     count = max(1.0, float(record.stats[2, 0])) if record.stats.size else 1.0
     if pto_names:
         data["mean_pto_power"] = (("pto",), record.stats[0] / count)
@@ -302,14 +349,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         mean = record.stats[3] / count
         rms = np.sqrt(np.maximum(record.stats[1] / count - mean**2, 0.0))  # about the window's mean, as the metric
         data.update(by_pto_kind(rms, rotary, ("rms_pto_angle", "rms_pto_displacement"), ("pto",)))
-        coords["pto"] = pto_names
-        coords["pto_kind"] = ("pto", ["rotary" if r else "linear" for r in rotary])
-    for dim, values in (("dof_linear", lin_names), ("dof_angular", ang_names)):
-        if any(dim in v[0] for v in data.values()):
-            coords[dim] = values
-    for dim, mask in (("hydro_dof_linear", ~stored_angular), ("hydro_dof_angular", stored_angular)):
-        if any(dim in v[0] for v in data.values()):
-            coords[dim] = [d for d, m in zip(hydro_dofs, mask, strict=True) if m]
+        coords.update(_pto_coordinates(compiled))
     n_steps = compiled.n_steps
     report = compiled.controller.report() if compiled.device.ptos else {}
     attrs: dict[str, Any] = {
@@ -334,7 +374,7 @@ def build_result(compiled: CompiledScene, record: Record) -> xr.Dataset:
         "run_time_s": record.run_time,
         "steps_per_second": n_steps / record.run_time if record.run_time > 0 else float("inf"),
         "seed": scene.sea.seed,
-        "notes": "; ".join(_notes(compiled, report, record.q, known)) or "none",
+        "notes": "; ".join(_notes(compiled, report, motion)) or "none",
         "rho": compiled.hydro.rho,
         "g": compiled.hydro.g,
         "moorings": json.dumps([m.to_dict() for m in compiled.device.moorings]) if compiled.device.moorings else "none",

@@ -3,21 +3,30 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import xarray as xr
 
 from ..compiled import CompiledScene
 from ..control import Controller, attach_controller, compile_scene
+from ..netcdf import storage_encoding, write_netcdf
 from ..scene import Scene
 from ._frequency import run_frequency_domain
 from ._linear import simulate_linear
 from ._nonlinear import run_fixed_step, run_reference
 from ._result import build_result
+from ._stream import STREAMED_GROUPS, ResultStream
 
 
 def simulate(
-    scene: Scene | CompiledScene | str | Path, *, controller: Controller | None = None, progress: bool = False
+    scene: Scene | CompiledScene | str | Path,
+    *,
+    controller: Controller | None = None,
+    progress: bool = False,
+    path: str | os.PathLike[str] | None = None,
+    compress: int = 0,
+    float32: bool = False,
 ) -> xr.Dataset:
     """Run a scene.
 
@@ -33,12 +42,21 @@ def simulate(
         say was not used). With a compiled scene, give the plant (``wecss.compiled.compile_plant``) or a scene.
     progress : bool
         Print a progress bar on standard error (nonlinear runs).
+    path : file name, optional
+        Write the result to this netCDF file, the same content as ``wecss.results.save`` writes. The Beeman and
+        RK4 runs stream it: their time series are appended chunk by chunk as the run goes (memory stays flat
+        whatever the number of saved steps; the file ``NAME.partial.nc`` is readable after every chunk, its
+        ``run_status`` attribute says how far it got, and it stays there when the run fails or is interrupted;
+        the complete file is renamed to ``path``). The other runs, and runs with the ``loads`` output group (it
+        needs the whole record), are built whole and then saved.
+    compress, float32 : as ``wecss.results.save`` (only with ``path``).
 
     Returns
     -------
     xarray.Dataset
         Time series and statistics as the scene's outputs ask (see ``wecss.sim.build_result``), with the scene
-        (JSON) and the run's solver, settings, timings and notes in the attributes.
+        (JSON) and the run's solver, settings, timings and notes in the attributes. A streamed run's is opened
+        lazily from its file (values are read when used; close it, or use it in a ``with`` block, when done).
 
     Raises
     ------
@@ -47,7 +65,15 @@ def simulate(
     SimulationDiverged
         If the state becomes non-finite, a hinge passes its bound, the corrector fails, or energy grows in calm
         water; the exception carries the time, step and state.
+    ValueError
+        For ``compress`` or ``float32`` without ``path``, or a ``compress`` level outside 0-9.
     """
+    if path is None and (compress or float32):
+        raise ValueError(
+            f"compress={compress!r} and float32={float32!r} say how to write the result file: give path too "
+            "(or save the returned Dataset with wecss.results.save)"
+        )
+    storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuses bad options before the run
     if isinstance(scene, str | Path):
         scene = Scene.from_toml(scene)
     if isinstance(scene, CompiledScene):
@@ -57,12 +83,42 @@ def simulate(
     else:
         raise TypeError(f"simulate takes a Scene, a CompiledScene or a scene file; got {type(scene).__name__}")
     method = compiled.scene.solver.method
+    if path is not None and streamed(compiled):
+        return _streamed(compiled, progress, path, compress, float32)
     if method == "linear":
-        return simulate_linear(compiled, hold=compiled.scene.solver.linear_hold)
-    if method == "frequency":
-        record = run_frequency_domain(compiled)
-    elif method == "reference":
-        record = run_reference(compiled, progress)
+        ds = simulate_linear(compiled, hold=compiled.scene.solver.linear_hold)
     else:
-        record = run_fixed_step(compiled, progress)
-    return build_result(compiled, record)
+        if method == "frequency":
+            record = run_frequency_domain(compiled)
+        elif method == "reference":
+            record = run_reference(compiled, progress)
+        else:
+            record = run_fixed_step(compiled, progress)
+        ds = build_result(compiled, record)
+    if path is not None:
+        write_netcdf(ds, path, compress=compress, float32=float32)
+    return ds
+
+
+def streamed(compiled: CompiledScene) -> bool:
+    """Whether ``simulate(..., path=...)`` streams this scene's result to the file as it runs: Beeman and RK4 runs
+    that save time series of the groups ``STREAMED_GROUPS`` (statistics-only runs hold nothing per step and
+    are written at the end)."""
+    scene = compiled.scene
+    return (
+        scene.solver.method in ("beeman", "rk4")
+        and not scene.outputs.statistics_only
+        and set(scene.outputs.variables) <= set(STREAMED_GROUPS)
+    )
+
+
+def _streamed(
+    compiled: CompiledScene, progress: bool, path: str | os.PathLike[str], compress: int, float32: bool
+) -> xr.Dataset:
+    stream = ResultStream(compiled, path, compress=compress, float32=float32)
+    try:
+        record = run_fixed_step(compiled, progress, stream)
+    except BaseException as err:
+        stream.stop(err)
+        raise
+    return xr.open_dataset(stream.finish(record), engine="netcdf4")
