@@ -11,7 +11,6 @@ from wecss.radiation import (
     FitSettings,
     RadiationConvolution,
     RadiationStateSpace,
-    enforce_passivity,
     filon_cosine_weights,
     fit_radiation,
     impulse_response,
