@@ -1,5 +1,6 @@
 """Generate the state-space radiation fits shipped with wecss (``wecss/data/radiation``): the band-limited MIMO
-Hankel-SVD fits that ``radiation.method = "state_space"`` uses with its defaults, for the shipped M4 databases.
+Hankel-SVD fits that ``radiation.method = "state_space"`` (the default) uses with its defaults, for the shipped
+databases.
 
 A scene finds them through the radiation cache (same key: a hash of the radiation data, the fit settings and the
 band), so that the first state-space run of a shipped layout does not spend minutes fitting. The key does not
@@ -7,6 +8,7 @@ change when the fitting code does: rerun this script after changing ``wecss.radi
 real modal form (block-diagonal A, same kernel to rounding), compressed.
 
     python studies/generate_fits.py           # fit m4-111, m4-132, m4-134 afresh (minutes each)
+    python studies/generate_fits.py m4-134    # one of them
     python studies/generate_fits.py --quick   # check that every shipped fit matches today's data and settings
 """
 
@@ -20,14 +22,18 @@ from wecss.devices import load as load_device
 from wecss.radiation import SHIPPED_FITS_DIR, fit_cache_key, fit_radiation, load_cached_fit, store_fit
 from wecss.scene import Scene
 
-DATABASES = ("m4-111", "m4-132", "m4-134")
+DATABASES = ("m4-111", "m4-132", "m4-134", "notc-10kw")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("names", nargs="*", help=f"databases to fit, of {', '.join(DATABASES)} (default: all)")
     args = parser.parse_args()
-    for name in DATABASES:
+    unknown = sorted(set(args.names) - set(DATABASES))
+    if unknown:
+        parser.error(f"unknown databases {unknown}; choose from {', '.join(DATABASES)}")
+    for name in args.names or DATABASES:
         hydro = load_device(name).coupling().hydro
         settings, band = fit_request(Scene(), hydro)  # what a default scene with state-space radiation asks for
         key = fit_cache_key(hydro, settings, band)

@@ -39,7 +39,10 @@ def test_times_in_seconds_or_relative_to_the_period(value, seconds):
         ({"sea": {"duration": "ten Tp"}}, "cannot read 'ten Tp'"),
         ({"solver": {"dt": 30.0}}, "must be shorter than sea.duration"),
         ({"solver": {"method": "euler"}}, "accepted: beeman, rk4, reference"),
-        ({"solver": {"method": "rk4"}}, "needs radiation.method 'state_space' or 'none'"),
+        (
+            {"solver": {"method": "rk4"}, "radiation": {"method": "convolution"}},
+            "needs radiation.method 'state_space' or 'none'",
+        ),
         ({"radiation": {"method": "magic"}}, "accepted: convolution, state_space, none"),
         ({"controller": {"name": "telepathy"}}, "unknown controller 'telepathy'; available: damping"),
         ({"controller": {"name": "damping", "parameters": {"damping": -1.0}}}, "damping must be >= 0"),
@@ -139,7 +142,10 @@ def test_scenes_are_hashable_and_equal_scenes_hash_equal():
 @pytest.mark.parametrize(
     ("sections", "message"),
     [
-        ({"solver": {"method": "linear"}}, "solver.method 'linear' needs radiation.method 'state_space'"),
+        (
+            {"solver": {"method": "linear"}, "radiation": {"method": "convolution"}},
+            "solver.method 'linear' needs radiation.method 'state_space'",
+        ),
         ({"solver": {"hold": "zoh"}}, "solver.hold applies to solver.method 'linear' only"),
         (
             {"solver": {"method": "linear", "hold": "cubic"}, "radiation": {"method": "state_space"}},

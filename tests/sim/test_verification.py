@@ -192,20 +192,24 @@ def test_an_unstable_controller_raises_simulation_diverged():
 
 
 def test_convolution_and_state_space_agree_on_the_default_scene(tmp_path, monkeypatch):
-    """The embedded default (M4 134, 20,000 steps): hinge angles within 1 % RMS, with the shipped band-limited
-    MIMO fit (an empty user cache makes sure the shipped one is used)."""
+    """The embedded default (M4 134, 20,000 steps): hinge angles within 0.1 % RMS (issue 15's target; measured
+    0.093 % for the series, 0.057 % for the RMS angle), with the shipped band-limited, passive MIMO fit (an empty
+    user cache makes sure the shipped one is used)."""
     from wecss.sim import Scene, default_scene_path
 
     monkeypatch.setenv("WECSS_CACHE_DIR", str(tmp_path))
     base = Scene.from_toml(default_scene_path())
-    convolution = simulate(base)
+    convolution = simulate(
+        dataclasses.replace(base, radiation=dataclasses.replace(base.radiation, method="convolution"))
+    )
     state_space = simulate(
         dataclasses.replace(base, radiation=dataclasses.replace(base.radiation, method="state_space"))
     )
     assert not list(tmp_path.glob("**/*.nc"))  # the shipped fit was used, nothing was fitted
-    assert "201 complex modal states" in state_space.attrs["radiation"]
+    assert "303 complex modal states" in state_space.attrs["radiation"]
+    assert state_space.attrs["radiation_fit_passive"] == 1
     a, b = state_space.pto_angle.values, convolution.pto_angle.values
-    assert np.all(_rms(a - b) <= 0.01 * _rms(b)), _rms(a - b) / _rms(b)
+    assert np.all(_rms(a - b) <= 1e-3 * _rms(b)), _rms(a - b) / _rms(b)
 
 
 def test_reference_run_saves_and_averages_as_the_fixed_step_runs():

@@ -339,7 +339,10 @@ class Radiation:
 
     Attributes
     ----------
-    method : {"convolution", "state_space", "none"}
+    method : {"state_space", "convolution", "none"}
+        ``state_space`` (default): the fitted, passive state-space model (fits of the shipped databases ship with
+        wecss; another database's first fit takes minutes and is cached). ``convolution``: the database's kernel
+        itself, the reference (no fit).
     coupling_threshold : float
         Both methods: kernel entries whose peak is below this share of sqrt(peak_ii peak_jj) are dropped from the
         convolution and from the state-space fit's targets (reported) [-]; the rule is
@@ -360,7 +363,7 @@ class Radiation:
         off); the result's notes say so.
     """
 
-    method: str = "convolution"
+    method: str = "state_space"
     coupling_threshold: float = 1e-3
     fit: str = "era-mimo"
     band: float = 0.6

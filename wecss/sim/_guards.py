@@ -280,9 +280,11 @@ def fit_notes(compiled: CompiledScene) -> list[str]:
         return []
     report = compiled.radiation_fit.report.attrs
     margin, stable = float(report["passivity_margin"]), int(report["stable"])
-    if margin >= 0 and stable:
+    passive = bool(report.get("passive", margin >= 0))  # fits stored before the passivity enforcement lack it
+    if passive and stable:
         return []
     return [
-        f"radiation state-space fit: passivity margin {margin:.3g} (negative: not passive; it can add energy), "
-        f"{'stable' if stable else 'not stable to the required damping'}; repair: {report['repair']}"
+        f"radiation state-space fit: {'passive' if passive else 'NOT PASSIVE (it can add energy)'}, scaled "
+        f"passivity margin {margin:.3g}, {'stable' if stable else 'not stable to the required damping'}; "
+        f"repair: {report['repair']}"
     ]

@@ -387,6 +387,7 @@ def _with_statistics(
     if compiled.radiation_fit is not None:  # the state-space fit's passivity and stability, where a user chose it
         report = compiled.radiation_fit.report.attrs
         attrs["radiation_fit_passivity_margin"] = float(report["passivity_margin"])
+        attrs["radiation_fit_passive"] = int(report.get("passive", float(report["passivity_margin"]) >= 0))
         attrs["radiation_fit_stable"] = int(report["stable"])
         attrs["radiation_fit_repair"] = str(report["repair"])
     if pto_names and compiled.excitation is not None and compiled.excitation.omega.size:
