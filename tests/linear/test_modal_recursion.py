@@ -45,7 +45,7 @@ def test_modal_run_of_m4_134_equals_the_matrix_exponential_step(hold):
     dt, n = 0.006, BLOCK_STEPS + 300
     t = dt * np.arange(n)
     rng = np.random.default_rng(5)
-    m = model.system.ninputs
+    m = model.state_space.ninputs
     u = np.sin(np.outer(t, rng.uniform(2.0, 8.0, m)) + rng.uniform(0, 2 * np.pi, m)) * rng.uniform(1, 20, m)
     x0 = np.zeros(model.n_states)
     x0[: 2 * nv] = rng.normal(scale=1e-3, size=2 * nv)

@@ -42,15 +42,18 @@ def test_state_matrix_is_the_jacobian_of_the_nonlinear_equations(device):
         step = np.zeros(n)
         step[k] = 1e-6
         jac[:, k] = (rhs(step) - rhs(-step)) / 2e-6
-    a = np.asarray(model.system.A)
+    a = np.asarray(model.state_space.A)
     assert np.max(np.abs(jac - a)) <= 1e-6 * np.max(np.abs(a))
-    assert model.system.ninputs == n_h + p.pto_kind.size and model.system.noutputs == 2 * nv + 2 * p.pto_kind.size
+    assert (
+        model.state_space.ninputs == n_h + p.pto_kind.size
+        and model.state_space.noutputs == 2 * nv + 2 * p.pto_kind.size
+    )
 
 
 def _model_steady_state(model, compiled, time):
     """Steady-state PTO strokes of the linear model itself: C (i omega - A)^-1 B U at the wave components."""
     exc = compiled.excitation
-    a, b = np.asarray(model.system.A), np.asarray(model.system.B)
+    a, b = np.asarray(model.state_space.A), np.asarray(model.state_space.B)
     n_h, nv = model.hydro_jacobian.shape
     out = np.zeros((time.size, model.pto_jacobian.shape[0]))
     for w, coefficients in zip(exc.omega, exc.coefficients.T, strict=True):
@@ -100,7 +103,7 @@ def test_linear_model_response_matches_the_frequency_domain_in_the_fitted_band(d
     omega = compiled.hydro.omega
     omega = omega[(omega >= 1.0) & (omega <= compiled.scene.radiation.band * omega[-1])]
     h_data = model.frequency_response(omega)
-    a, b = np.asarray(model.system.A), np.asarray(model.system.B)
+    a, b = np.asarray(model.state_space.A), np.asarray(model.state_space.B)
     n_h, nv = model.hydro_jacobian.shape
     h_model = np.array([np.linalg.solve(1j * w * np.eye(a.shape[0]) - a, b[:, :n_h])[:nv] for w in omega])
     x = excitation_coefficients(compiled.hydro, omega)
@@ -118,13 +121,15 @@ def test_linear_model_round_trips_through_netcdf(tmp_path):
     model = linearize(_compiled())
     path = save(model.to_dataset(), tmp_path / "linear.nc")
     again = LinearModel.from_dataset(open_result(path))
-    np.testing.assert_array_equal(np.asarray(again.system.A), np.asarray(model.system.A))
-    np.testing.assert_array_equal(np.asarray(again.system.B), np.asarray(model.system.B))
-    assert again.system.state_labels == model.system.state_labels
-    assert again.system.input_labels == model.system.input_labels
+    np.testing.assert_array_equal(np.asarray(again.state_space.A), np.asarray(model.state_space.A))
+    np.testing.assert_array_equal(np.asarray(again.state_space.B), np.asarray(model.state_space.B))
+    assert again.state_space.state_labels == model.state_space.state_labels
+    assert again.state_space.input_labels == model.state_space.input_labels
     np.testing.assert_array_equal(again.radiation.C, model.radiation.C)
     for name in ("C", "D"):
-        np.testing.assert_array_equal(np.asarray(getattr(again.system, name)), np.asarray(getattr(model.system, name)))
+        np.testing.assert_array_equal(
+            np.asarray(getattr(again.state_space, name)), np.asarray(getattr(model.state_space, name))
+        )
     for name in ("mass", "damping", "stiffness", "q0", "pto_jacobian", "hydro_jacobian"):
         np.testing.assert_array_equal(getattr(again, name), getattr(model, name))
 
@@ -216,7 +221,7 @@ def test_free_surge_has_an_exactly_zero_stiffness_column():
     surge displacement an exact integrator of the linear model (split off by the modal runs)."""
     compiled = _compiled("m4-134")
     assert np.all(compiled.stiffness[:, 0] == 0.0)
-    assert np.all(np.asarray(linearize(compiled).system.A)[:, 0] == 0.0)
+    assert np.all(np.asarray(linearize(compiled).state_space.A)[:, 0] == 0.0)
 
 
 def test_controller_is_called_at_its_control_rate_in_both_simulators():

@@ -27,7 +27,9 @@ from __future__ import annotations
 
 import hashlib
 from collections import OrderedDict
-from dataclasses import dataclass, replace
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -103,7 +105,11 @@ class LinearModel:
     radiation : RadiationStateSpace or None
         The radiation states' model (real modal form); None when the scene's memory is a convolution.
     system : control.StateSpace or None
-        Continuous-time model with named states, inputs and outputs (None without ``radiation``).
+        Continuous-time model with named states, inputs and outputs, built on first use of :attr:`state_space`
+        (python-control takes about a second to import, and the frequency-domain uses of the model, such as the
+        power bound of every run, do not need it): None without ``radiation`` or before that first use.
+    build_system : callable or None
+        Makes ``system`` (used by :attr:`state_space`).
     """
 
     mass: np.ndarray
@@ -119,16 +125,19 @@ class LinearModel:
     pto_stiffness: np.ndarray
     radiation: RadiationStateSpace | None
     system: control.StateSpace | None
+    build_system: Callable[[], control.StateSpace] | None = field(default=None, repr=False)
 
     @property
     def state_space(self) -> control.StateSpace:
-        """The state-space system.
+        """The state-space system (built on first use).
 
         Raises
         ------
         NoStateSpace
             When the model has none (compile the scene with ``radiation.method = "state_space"``).
         """
+        if self.system is None and self.build_system is not None:
+            object.__setattr__(self, "system", self.build_system())
         if self.system is None:
             raise NoStateSpace(
                 "this linear model has no state-space system: compile the scene with radiation.method = "
@@ -177,26 +186,31 @@ class LinearModel:
         g = self.pto_jacobian
         change_c = g.T @ np.diag(gains[0] - self.pto_damping) @ g
         change_k = g.T @ np.diag(gains[1] - self.pto_stiffness) @ g
-        system = None
-        if self.system is not None:
-            nv = self.mass.shape[0]
-            a = np.array(self.system.A, dtype=float)
-            minv = np.linalg.inv(self.mass)
-            a[nv : 2 * nv, :nv] -= minv @ change_k
-            a[nv : 2 * nv, nv : 2 * nv] -= minv @ change_c
-            import control
+        build = None
+        if self.system is not None or self.build_system is not None:
 
-            system = control.ss(
-                a, self.system.B, self.system.C, self.system.D, states=list(self.system.state_labels),
-                inputs=list(self.system.input_labels), outputs=list(self.system.output_labels), name=self.system.name,
-            )  # fmt: skip
+            def build() -> control.StateSpace:
+                base = self.state_space
+                nv = self.mass.shape[0]
+                a = np.array(base.A, dtype=float)
+                minv = np.linalg.inv(self.mass)
+                a[nv : 2 * nv, :nv] -= minv @ change_k
+                a[nv : 2 * nv, nv : 2 * nv] -= minv @ change_c
+                import control
+
+                return control.ss(
+                    a, base.B, base.C, base.D, states=list(base.state_labels), inputs=list(base.input_labels),
+                    outputs=list(base.output_labels), name=base.name,
+                )  # fmt: skip
+
         return replace(
             self,
             damping=self.damping + change_c,
             stiffness=self.stiffness + change_k,
             pto_damping=gains[0],
             pto_stiffness=gains[1],
-            system=system,
+            system=None,
+            build_system=build,
         )
 
     def with_radiation(self, radiation: RadiationStateSpace) -> LinearModel:
@@ -498,19 +512,35 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
         compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values
     )
     rad = radiation.real_modal() if radiation is not None else _radiation_model(compiled)
-    system = None
+    build = None
     if rad is not None:
         if tuple(rad.dofs) != tuple(compiled.hydro.dofs):
             raise ValueError(f"radiation model DOFs {rad.dofs} differ from the database's {compiled.hydro.dofs}")
-        system = _state_space(compiled, rad, mass, damping, stiffness, bw, g)
+        labels = _Labels(
+            tuple(compiled.device.model.velocity_names),
+            tuple(pto.name for pto in compiled.device.ptos),
+            tuple(compiled.hydro.dofs),
+            compiled.device.name,
+        )  # only the names: the cached model must not keep the compiled scene alive
+        build = partial(_state_space, labels, rad, mass, damping, stiffness, bw, g)
     return LinearModel(
         mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
-        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, system,
+        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, build,
     )  # fmt: skip
 
 
+@dataclass(frozen=True)
+class _Labels:
+    """Names of the state-space system's states, inputs and outputs."""
+
+    velocities: tuple[str, ...]
+    ptos: tuple[str, ...]
+    hydro_dofs: tuple[str, ...]
+    device: str
+
+
 def _state_space(
-    compiled: CompiledScene,
+    labels: _Labels,
     rad: RadiationStateSpace,
     mass: np.ndarray,
     damping: np.ndarray,
@@ -538,8 +568,8 @@ def _state_space(
     c[nv : 2 * nv, nv : 2 * nv] = np.eye(nv)
     c[2 * nv : 2 * nv + n_pto, :nv] = g
     c[2 * nv + n_pto :, nv : 2 * nv] = g
-    names = list(compiled.device.model.velocity_names)
-    ptos = [pto.name for pto in compiled.device.ptos]
+    names = list(labels.velocities)
+    ptos = list(labels.ptos)
     import control
 
     return control.ss(
@@ -548,12 +578,12 @@ def _state_space(
         c,
         np.zeros((c.shape[0], bmat.shape[1])),
         states=[*names, *(f"{n}__rate" for n in names), *(f"radiation_{k}" for k in range(nz))],
-        inputs=[*(f"excitation__{d}" for d in compiled.hydro.dofs), *(f"force__{n}" for n in ptos)],
+        inputs=[*(f"excitation__{d}" for d in labels.hydro_dofs), *(f"force__{n}" for n in ptos)],
         outputs=[
             *names,
             *(f"{n}__rate" for n in names),
             *(f"stroke__{n}" for n in ptos),
             *(f"stroke_rate__{n}" for n in ptos),
         ],
-        name=f"{compiled.device.name} linearised",
+        name=f"{labels.device} linearised",
     )

@@ -223,7 +223,7 @@ def welch_density(values: np.ndarray, dt: float, nperseg: int) -> tuple[np.ndarr
     density, freq = mlab.psd(
         values, NFFT=nperseg, Fs=1.0 / dt, detrend="mean", window=window, noverlap=nperseg // 2, sides="onesided"
     )
-    return freq, density
+    return np.asarray(freq), np.asarray(density)
 
 
 def _target_spectrum(ds: xr.Dataset) -> Jonswap | None:
