@@ -35,6 +35,8 @@ from ._phi import phi_functions as phi_functions
 from ._plant import Plant as Plant
 from ._plant import PtoKind as PtoKind
 from ._plant import build_plant as build_plant
+from ._plant import linear_damping as linear_damping
+from ._plant import mooring_damping_matrix as mooring_damping_matrix
 from ._radiation import RadiationArrays as RadiationArrays
 from ._radiation import RadiationKind as RadiationKind
 from ._radiation import RadiationSummary as RadiationSummary

@@ -593,7 +593,7 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     # the memory force of the newest hydro velocity, through Bw
     matvec(w.bh, v, w.u)
     matvec(newest, w.u, w.load)
-    damping = p.mooring_damping  # the moorings' dampers (zero without moorings)
+    damping = p.mooring_damping  # the moorings' dampers ((0, 0) without moorings: no work)
     for i in range(damping.shape[0]):
         s = 0.0
         for k in range(damping.shape[1]):
