@@ -34,6 +34,7 @@ from ..compiled import (
     matvec,
     matvec_add,
     normalise_quaternions,
+    reduction_kernel,
     respond,
 )
 from ._memory import block_history, memory_advance
@@ -307,7 +308,7 @@ def beeman_chunk(
     return LoopStatus.OK, step0 + n_steps
 
 
-@kernel
+@reduction_kernel  # (the inlined products vectorise)
 def state_rates(
     p: Plant,
     r: RadiationArrays,
