@@ -10,6 +10,7 @@ from ._compile import with_linear_gains as with_linear_gains
 from ._jit import JIT as JIT
 from ._jit import kernel as kernel
 from ._jit import reduction_kernel as reduction_kernel
+from ._jit import step_kernel as step_kernel
 from ._kernels import Workspace as Workspace
 from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate

@@ -136,6 +136,18 @@ def reduction_kernel(fn: F) -> F:
     return _njit(fn, {"cache": True, "fastmath": {"reassoc", "contract", "arcp"}})
 
 
+def step_kernel(fn: F) -> F:
+    """As :func:`reduction_kernel`, for the kernels the time loops call every step or evaluation (``configure``,
+    ``respond``, the radiation memory's updates), with numpy's error model: a float division by zero gives inf or
+    NaN instead of raising, which the loops' finiteness checks catch. (A possible raise is a branch out of the
+    function that keeps numba from pruning the reference counts of the Plant and Workspace arrays; see
+    :func:`inline_kernel`.)
+    """
+    if not JIT:
+        return fn
+    return _njit(fn, {"cache": True, "fastmath": {"reassoc", "contract", "arcp"}, "error_model": "numpy"})
+
+
 def loop_kernel(fallback: Callable[..., Any]) -> Callable[[F], F]:
     """Compile the decorated loop with numba, inlined into its compiled callers (as :func:`inline_kernel`: the
     caller's fast-math flags apply, see :func:`reduction_kernel`); without numba use ``fallback`` instead: the same

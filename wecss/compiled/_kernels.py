@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._jit import inline_kernel, kernel, reduction_kernel
+from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
 
@@ -273,7 +273,9 @@ def _frames(
     the frames of a few bodies, and :func:`poses` calls it once per configuration."""
     n = com0.shape[0]
     if twists:
-        cols[:, :] = 0.0
+        for a in range(6):
+            for c in range(cols.shape[1]):
+                cols[a, c] = 0.0
     for idx in range(n):
         i = order[idx]
         par = parent[i]
@@ -598,7 +600,7 @@ def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
     return np.array([end_stop(p, k, float(x[k]), float(xdot[k])) for k in range(x.shape[0])])
 
 
-@reduction_kernel  # the inlined products vectorise (as the loop kernels did)
+@step_kernel
 def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) -> bool:
     """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` alone, into ``w``:
     the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of gravity, buoyancy,
@@ -636,7 +638,7 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) ->
     return ok
 
 
-@reduction_kernel  # the inlined products vectorise (as the loop kernels did)
+@step_kernel
 def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace) -> None:
     """Generalised accelerations at the velocities ``v`` and the configuration in ``w`` (:func:`configure`), into
     ``w.acc``; also the hydro velocities ``w.u``, the PTO rates ``w.xdot`` and forces ``w.f`` (the controller's,

@@ -34,8 +34,8 @@ from ..compiled import (
     matvec,
     matvec_add,
     normalise_quaternions,
-    reduction_kernel,
     respond,
+    step_kernel,
 )
 from ._memory import block_history, memory_advance
 from ._memory import memory_history as memory_history  # (the step-by-step history, for the tests)
@@ -308,7 +308,7 @@ def beeman_chunk(
     return LoopStatus.OK, step0 + n_steps
 
 
-@reduction_kernel  # (the inlined products vectorise)
+@step_kernel
 def state_rates(
     p: Plant,
     r: RadiationArrays,
