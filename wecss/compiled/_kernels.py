@@ -612,12 +612,6 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) ->
     """
     place(p, q, w)
     _hydro_jacobian(p, w)
-    act = p.active
-    for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
-        for c in range(w.bat.shape[0]):
-            w.bat[c, k] = w.b[act[k], c]
-    congruence(w.bat, p.active_mass, w.mass_work, w.mass)
-    ok = cholesky(w.mass, w.factor)
     # world loads: gravity, buoyancy, hydrostatics and the given hydro force; through Bw, that is B with the
     # moments in body axes
     force = w.force
@@ -635,7 +629,23 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) ->
     _pto_strokes_into(p, q, w.rot, w.pos, w.b, w.stroke, w.gmat)
     for k in range(w.stroke.shape[0]):
         w.stroke[k] -= p.pto_rest[k]
-    return ok
+    act = p.active
+    for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
+        for c in range(w.bat.shape[0]):
+            w.bat[c, k] = w.b[act[k], c]
+    # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of the
+    # tuples' arrays (measured, not understood); a call as the last statement costs only its own arguments' counts
+    return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
+
+
+@step_kernel
+def _factor_mass(
+    bat: np.ndarray, active_mass: np.ndarray, work: np.ndarray, mass: np.ndarray, factor: np.ndarray
+) -> bool:
+    """M* = B'(M + A_inf)B from ``bat`` (B's active rows, transposed) into ``mass`` and its lower Cholesky factor
+    into ``factor`` (``work`` is scratch); False when M* is not positive definite."""
+    congruence(bat, active_mass, work, mass)
+    return cholesky(mass, factor)
 
 
 @step_kernel
