@@ -8,6 +8,7 @@ from ._compile import fit_request as fit_request
 from ._compile import make_waves as make_waves
 from ._compile import with_linear_gains as with_linear_gains
 from ._jit import JIT as JIT
+from ._jit import inline_kernel as inline_kernel
 from ._jit import kernel as kernel
 from ._jit import reduction_kernel as reduction_kernel
 from ._jit import step_kernel as step_kernel

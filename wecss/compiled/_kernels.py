@@ -22,18 +22,6 @@ from ._plant import Plant, PtoKind
 _SMALL = 1e-8
 
 
-@kernel
-def hat(w: np.ndarray) -> np.ndarray:
-    out = np.zeros((3, 3))
-    out[0, 1] = -w[2]
-    out[0, 2] = w[1]
-    out[1, 0] = w[2]
-    out[1, 2] = -w[0]
-    out[2, 0] = -w[1]
-    out[2, 1] = w[0]
-    return out
-
-
 @inline_kernel
 def so3_log_into(r: np.ndarray, out: np.ndarray) -> None:
     """The rotation vector of the rotation matrix ``r`` (3, 3) into ``out`` (3,) [rad]."""
@@ -68,19 +56,6 @@ def so3_log(r: np.ndarray) -> np.ndarray:
     out = np.empty(3)
     so3_log_into(r, out)
     return out
-
-
-@kernel
-def quat_to_matrix(quat: np.ndarray) -> np.ndarray:
-    n = np.sqrt(np.sum(quat**2))
-    w, x, y, z = quat[0] / n, quat[1] / n, quat[2] / n, quat[3] / n
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
-    )
 
 
 @inline_kernel
