@@ -8,8 +8,10 @@ from ._compile import fit_request as fit_request
 from ._compile import make_waves as make_waves
 from ._compile import with_linear_gains as with_linear_gains
 from ._jit import JIT as JIT
+from ._jit import inline_kernel as inline_kernel
 from ._jit import kernel as kernel
 from ._jit import reduction_kernel as reduction_kernel
+from ._jit import step_kernel as step_kernel
 from ._kernels import Workspace as Workspace
 from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate
@@ -35,6 +37,8 @@ from ._phi import phi_functions as phi_functions
 from ._plant import Plant as Plant
 from ._plant import PtoKind as PtoKind
 from ._plant import build_plant as build_plant
+from ._plant import linear_damping as linear_damping
+from ._plant import mooring_damping_matrix as mooring_damping_matrix
 from ._radiation import RadiationArrays as RadiationArrays
 from ._radiation import RadiationKind as RadiationKind
 from ._radiation import RadiationSummary as RadiationSummary

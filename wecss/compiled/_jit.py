@@ -111,23 +111,53 @@ def kernel(fn: F) -> F:
     return _njit(fn, {"cache": True})
 
 
-def reduction_kernel(fn: F) -> F:
-    """As :func:`kernel`, allowing numba to reorder floating-point sums (SIMD) for long dot products only.
+def inline_kernel(fn: F) -> F:
+    """As :func:`kernel`, and inlined into its compiled callers (numba's ``inline="always"``).
 
-    Use it only for functions without NaN or infinity checks: fast-math assumes finite values.
+    A compiled function that takes tuples of arrays (the Plant, the Workspace) and calls another compiled function
+    pays a reference count up and down for every array of those tuples on each of its calls: numba cannot prune
+    the counts across an opaque call. A function whose callees are all inlined pays none (numba prunes them), so
+    the helpers of the per-step kernels (``configure``, ``respond``) are inline kernels, and those kernels allocate
+    nothing and assign no array slices (both are calls too).
+    """
+    if not JIT:
+        return fn
+    return _njit(fn, {"cache": True, "inline": "always"})
+
+
+def reduction_kernel(fn: F) -> F:
+    """As :func:`kernel`, allowing numba to reorder floating-point sums (SIMD) and to contract multiply-adds: for
+    kernels made of products (long dot products; the per-step kernels, whose loop kernels are inlined and take
+    these flags). Results change at round-off only. The flags keep NaN and infinity semantics (no "nnan" or
+    "ninf"), so comparisons with them stay exact; still, keep divergence checks out of these kernels.
     """
     if not JIT:
         return fn
     return _njit(fn, {"cache": True, "fastmath": {"reassoc", "contract", "arcp"}})
 
 
+def step_kernel(fn: F) -> F:
+    """As :func:`reduction_kernel`, for the kernels the time loops call every step or evaluation (``configure``,
+    ``respond``, the radiation memory's updates), with numpy's error model: a float division by zero gives inf or
+    NaN instead of raising, which the loops' finiteness checks catch. (A possible raise is a branch out of the
+    function that keeps numba from pruning the reference counts of the Plant and Workspace arrays; see
+    :func:`inline_kernel`.)
+    """
+    if not JIT:
+        return fn
+    return _njit(fn, {"cache": True, "fastmath": {"reassoc", "contract", "arcp"}, "error_model": "numpy"})
+
+
 def loop_kernel(fallback: Callable[..., Any]) -> Callable[[F], F]:
-    """Compile the decorated loop with numba (fast-math reassociation, as :func:`reduction_kernel`); without
-    numba use ``fallback`` instead: the same operation written with numpy, which the interpreter runs far faster
-    than the loop. Both give the same numbers to rounding (the tests run the pure path against the compiled one).
+    """Compile the decorated loop with numba, inlined into its compiled callers (as :func:`inline_kernel`: the
+    caller's fast-math flags apply, see :func:`reduction_kernel`); without numba use ``fallback`` instead: the same
+    operation written with numpy, which the interpreter runs far faster than the loop. Both give the same numbers
+    to rounding (the tests run the pure path against the compiled one).
     """
 
     def decorate(fn: F) -> F:
-        return reduction_kernel(fn) if JIT else fallback  # type: ignore[return-value]
+        if not JIT:
+            return fallback  # type: ignore[return-value]
+        return _njit(fn, {"cache": True, "fastmath": {"reassoc", "contract", "arcp"}, "inline": "always"})
 
     return decorate

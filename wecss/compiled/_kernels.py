@@ -15,26 +15,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._jit import kernel
+from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
 
 _SMALL = 1e-8
 
 
-@kernel
-def hat(w: np.ndarray) -> np.ndarray:
-    out = np.zeros((3, 3))
-    out[0, 1] = -w[2]
-    out[0, 2] = w[1]
-    out[1, 0] = w[2]
-    out[1, 2] = -w[0]
-    out[2, 0] = -w[1]
-    out[2, 1] = w[0]
-    return out
-
-
-@kernel
+@inline_kernel
 def so3_log_into(r: np.ndarray, out: np.ndarray) -> None:
     """The rotation vector of the rotation matrix ``r`` (3, 3) into ``out`` (3,) [rad]."""
     cos = min(1.0, max(-1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))
@@ -43,12 +31,20 @@ def so3_log_into(r: np.ndarray, out: np.ndarray) -> None:
     if theta < _SMALL:
         out[0], out[1], out[2] = v0, v1, v2
     elif np.pi - theta < 1e-6:
-        diag = np.array([r[0, 0], r[1, 1], r[2, 2]])
-        k = int(np.argmax(diag))  # the column of (R + I)/2 = n n' with the largest entry
-        axis = np.array([r[0, k], r[1, k], r[2, k]])
-        axis[k] += 1.0
-        axis *= theta / np.sqrt(np.sum(axis**2))
-        out[0], out[1], out[2] = axis[0], axis[1], axis[2]
+        k = 0  # the column of (R + I)/2 = n n' with the largest diagonal entry (the first of equals)
+        if r[1, 1] > r[k, k]:
+            k = 1
+        if r[2, 2] > r[k, k]:
+            k = 2
+        a0, a1, a2 = r[0, k], r[1, k], r[2, k]
+        if k == 0:
+            a0 += 1.0
+        elif k == 1:
+            a1 += 1.0
+        else:
+            a2 += 1.0
+        scale = theta / np.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+        out[0], out[1], out[2] = scale * a0, scale * a1, scale * a2
     else:
         scale = theta / np.sin(theta)
         out[0], out[1], out[2] = scale * v0, scale * v1, scale * v2
@@ -62,17 +58,20 @@ def so3_log(r: np.ndarray) -> np.ndarray:
     return out
 
 
-@kernel
-def quat_to_matrix(quat: np.ndarray) -> np.ndarray:
-    n = np.sqrt(np.sum(quat**2))
-    w, x, y, z = quat[0] / n, quat[1] / n, quat[2] / n, quat[3] / n
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
-    )
+@inline_kernel
+def _quat_matrix_into(q: np.ndarray, start: int, out: np.ndarray) -> None:
+    """The rotation matrix of the quaternion (w, x, y, z) = q[start : start + 4] (normalised here) into ``out``."""
+    n = np.sqrt(q[start] ** 2 + q[start + 1] ** 2 + q[start + 2] ** 2 + q[start + 3] ** 2)
+    w, x, y, z = q[start] / n, q[start + 1] / n, q[start + 2] / n, q[start + 3] / n
+    out[0, 0] = 1 - 2 * (y * y + z * z)
+    out[0, 1] = 2 * (x * y - w * z)
+    out[0, 2] = 2 * (x * z + w * y)
+    out[1, 0] = 2 * (x * y + w * z)
+    out[1, 1] = 1 - 2 * (x * x + z * z)
+    out[1, 2] = 2 * (y * z - w * x)
+    out[2, 0] = 2 * (x * z - w * y)
+    out[2, 1] = 2 * (y * z + w * x)
+    out[2, 2] = 1 - 2 * (x * x + y * y)
 
 
 @kernel
@@ -87,20 +86,20 @@ def quat_multiply(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     )
 
 
-@kernel
+@inline_kernel
 def _rotate(r: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
     for a in range(3):
         out[a] = r[a, 0] * x[0] + r[a, 1] * x[1] + r[a, 2] * x[2]
 
 
-@kernel
+@inline_kernel
 def _cross(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
     out[0] = a[1] * b[2] - a[2] * b[1]
     out[1] = a[2] * b[0] - a[0] * b[2]
     out[2] = a[0] * b[1] - a[1] * b[0]
 
 
-@kernel
+@inline_kernel
 def _screw(xi: np.ndarray, angle: float, rot: np.ndarray, trans: np.ndarray) -> None:
     """exp(xi * angle) as a rotation and a translation (Rodrigues; se3_exp without temporaries):
     R = I + c1 K + c2 K^2, t = v + c2 w x v + c3 w x (w x v), K = hat(w), K^2 = w w' - |w|^2 I."""
@@ -130,7 +129,7 @@ def _screw(xi: np.ndarray, angle: float, rot: np.ndarray, trans: np.ndarray) -> 
     trans[2] = v2 + c2 * x2 + c3 * y2
 
 
-@kernel
+@inline_kernel
 def _compose(r: np.ndarray, r_step: np.ndarray, out: np.ndarray) -> None:
     for a in range(3):
         for b in range(3):
@@ -210,7 +209,7 @@ def workspace(p: Plant) -> Workspace:
     )  # fmt: skip
 
 
-@kernel
+@inline_kernel
 def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
     """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w``."""
     n = p.com0.shape[0]
@@ -236,7 +235,7 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
                 b[6 * i + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
 
 
-@kernel
+@inline_kernel
 def _frames(
     order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, q_start: np.ndarray, n_cols: np.ndarray,
     free: np.ndarray, joint_twists: np.ndarray, com0: np.ndarray, q: np.ndarray, rot: np.ndarray, trans: np.ndarray,
@@ -249,7 +248,9 @@ def _frames(
     the frames of a few bodies, and :func:`poses` calls it once per configuration."""
     n = com0.shape[0]
     if twists:
-        cols[:, :] = 0.0
+        for a in range(6):
+            for c in range(cols.shape[1]):
+                cols[a, c] = 0.0
     for idx in range(n):
         i = order[idx]
         par = parent[i]
@@ -262,15 +263,20 @@ def _frames(
         iv = col_start[i]
         iq = q_start[i]
         if free[i] == 1:
-            x = q[iq : iq + 3].copy()
-            r[:, :] = quat_to_matrix(q[iq + 3 : iq + 7].copy())
-            t[:] = x - r @ com0[i]
-            if twists:
-                hx = hat(x)
-                for a in range(3):
-                    cols[a, iv + a] = 1.0
-                cols[:3, iv + 3 : iv + 6] = hx @ r
-                cols[3:, iv + 3 : iv + 6] = r
+            _quat_matrix_into(q, iq + 3, r)
+            _rotate(r, com0[i], tmp)
+            for a in range(3):
+                t[a] = q[iq + a] - tmp[a]
+            if twists:  # translation columns: the unit vectors; rotation columns: (x cross R e_b, R e_b)
+                x0, x1, x2 = q[iq], q[iq + 1], q[iq + 2]
+                for b in range(3):
+                    cols[b, iv + b] = 1.0
+                    c0, c1, c2 = r[0, b], r[1, b], r[2, b]
+                    cols[0, iv + 3 + b] = x1 * c2 - x2 * c1
+                    cols[1, iv + 3 + b] = x2 * c0 - x0 * c2
+                    cols[2, iv + 3 + b] = x0 * c1 - x1 * c0
+                    for a in range(3):
+                        cols[3 + a, iv + 3 + b] = r[a, b]
         else:
             for k in range(n_cols[i]):
                 col = iv + k
@@ -297,7 +303,7 @@ def _frames(
             pos[i, a] = tmp[a] + t[a]
 
 
-@kernel
+@inline_kernel
 def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
     """The velocity part of the kinematics at the configuration in ``w`` (:func:`place`): spatial twists, dS/dt,
     body angular velocities, CoM velocities and Bdot v, into ``w``."""
@@ -310,22 +316,34 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
         par = p.parent[i]
         iv = p.col_start[i]
         if p.free[i] == 1:  # dS/dt of a free base: its translation columns are constant
+            # rotation column b: with c = R (w_b x e_b), (v x R e_b + p x c, c), i.e. hat(v) R + hat(p) R hat(w_b)
+            # and R hat(w_b)
             r = w.rot[i]
-            wb = v[iv + 3 : iv + 6].copy()
-            hx = hat(w.pos[i].copy())
-            cols_dot[:, iv : iv + 3] = 0.0
-            cols_dot[:3, iv + 3 : iv + 6] = hat(v[iv : iv + 3].copy()) @ r + hx @ r @ hat(wb)
-            cols_dot[3:, iv + 3 : iv + 6] = r @ hat(wb)
+            pi = w.pos[i]
+            wb0, wb1, wb2 = v[iv + 3], v[iv + 4], v[iv + 5]
+            for b in range(3):
+                for a in range(6):
+                    cols_dot[a, iv + b] = 0.0
+                e0, e1, e2 = (0.0, wb2, -wb1) if b == 0 else ((-wb2, 0.0, wb0) if b == 1 else (wb1, -wb0, 0.0))
+                c0 = r[0, 0] * e0 + r[0, 1] * e1 + r[0, 2] * e2
+                c1 = r[1, 0] * e0 + r[1, 1] * e1 + r[1, 2] * e2
+                c2 = r[2, 0] * e0 + r[2, 1] * e1 + r[2, 2] * e2
+                r0, r1, r2 = r[0, b], r[1, b], r[2, b]
+                l0, l1, l2 = v[iv], v[iv + 1], v[iv + 2]
+                cols_dot[0, iv + 3 + b] = l1 * r2 - l2 * r1 + pi[1] * c2 - pi[2] * c1
+                cols_dot[1, iv + 3 + b] = l2 * r0 - l0 * r2 + pi[2] * c0 - pi[0] * c2
+                cols_dot[2, iv + 3 + b] = l0 * r1 - l1 * r0 + pi[0] * c1 - pi[1] * c0
+                cols_dot[3, iv + 3 + b] = c0
+                cols_dot[4, iv + 3 + b] = c1
+                cols_dot[5, iv + 3 + b] = c2
             for a in range(6):
                 total = 0.0
                 for c in range(iv, iv + 6):
                     total += cols[a, c] * v[c]
                 vel[a] = total
         else:
-            if par >= 0:
-                vel[:] = w.spatial[par]
-            else:
-                vel[:] = 0.0
+            for a in range(6):  # element loops: a slice assignment is a call (and allocates)
+                vel[a] = w.spatial[par, a] if par >= 0 else 0.0
             for k in range(p.n_cols[i]):
                 col = iv + k
                 s = cols[:, col]
@@ -339,7 +357,8 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
                     cols_dot[3 + a, col] = tmp[a]
                 for a in range(6):
                     vel[a] += s[a] * v[col]
-        w.spatial[i] = vel
+        for a in range(6):
+            w.spatial[i, a] = vel[a]
     # per body: CoM velocity, body angular velocity, and Bdot_i v = [-lin x w + A_lin - p x A_ang; R' A_ang] with
     # A = sum over the body's columns of v_c dS_c/dt (the columns' -hat(w_b) R' terms sum to -w_b x w_b = 0)
     acc = w.partial
@@ -351,7 +370,8 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
         for a in range(3):
             w.lin[i, a] = spatial[a] - tmp[a]
             w.omega[i, a] = r[0, a] * spatial[3] + r[1, a] * spatial[4] + r[2, a] * spatial[5]
-        acc[:] = 0.0
+        for a in range(6):
+            acc[a] = 0.0
         for c in range(nv):
             if p.chain[i, c] != 0.0:
                 for a in range(6):
@@ -417,7 +437,7 @@ def world_jacobian(rot: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-@kernel
+@inline_kernel
 def _hydro_jacobian(p: Plant, w: Workspace) -> None:
     """The hydro DOFs' rows of Bw into ``w.bh`` (world axes: rotational rows are R times B's body-axis rows)."""
     nv = p.twists.shape[0]
@@ -436,33 +456,61 @@ def _hydro_jacobian(p: Plant, w: Workspace) -> None:
                 )
 
 
-@kernel
+@inline_kernel
+def _end_point(rot: np.ndarray, pos: np.ndarray, body: int, point: np.ndarray) -> tuple[float, float, float]:
+    """World position [m] of an actuator's end: ``point`` in the axes of ``body`` from its centre of mass, or the
+    world point for the ground (body -1)."""
+    if body < 0:
+        return point[0], point[1], point[2]
+    r = rot[body]
+    return (
+        pos[body, 0] + r[0, 0] * point[0] + r[0, 1] * point[1] + r[0, 2] * point[2],
+        pos[body, 1] + r[1, 0] * point[0] + r[1, 1] * point[1] + r[1, 2] * point[2],
+        pos[body, 2] + r[2, 0] * point[0] + r[2, 1] * point[1] + r[2, 2] * point[2],
+    )
+
+
+@inline_kernel
 def _pto_strokes_into(
     p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray, x: np.ndarray, gmat: np.ndarray
 ) -> None:
-    """PTO strokes (n_pto,) [m or rad] into ``x`` and transmissions (n_pto, nv) into ``gmat`` (x_dot = G v)."""
+    """PTO strokes (n_pto,) [m or rad] into ``x`` and transmissions (n_pto, nv) into ``gmat`` (x_dot = G v).
+
+    An actuator's rate is n . (J_a - J_b) v with n the unit vector from end b to end a and J_e the Jacobian of
+    end e's velocity: per column, the body's CoM velocity column minus R (point x its body-axis angular velocity
+    column)."""
     nv = b.shape[1]
     for k in range(p.pto_kind.shape[0]):
         if p.pto_kind[k] == PtoKind.JOINT:
             x[k] = q[p.pto_coordinate[k]]
-            gmat[k, :] = 0.0
+            for c in range(nv):
+                gmat[k, c] = 0.0
             gmat[k, p.pto_velocity[k]] = 1.0
         else:
-            ends = np.zeros((2, 3))
-            jac = np.zeros((2, 3, nv))
-            for e in range(2):
-                body = p.pto_body_a[k] if e == 0 else p.pto_body_b[k]
-                point = p.pto_point_a[k] if e == 0 else p.pto_point_b[k]
-                if body < 0:
-                    ends[e] = point
-                else:
-                    r = np.ascontiguousarray(rot[body])
-                    ends[e] = pos[body] + r @ point
-                    jac[e] = b[6 * body : 6 * body + 3] - r @ hat(point) @ b[6 * body + 3 : 6 * body + 6]
-            d = ends[0] - ends[1]
-            length = np.sqrt(np.sum(d**2))
+            a0, a1, a2 = _end_point(rot, pos, p.pto_body_a[k], p.pto_point_a[k])
+            b0, b1, b2 = _end_point(rot, pos, p.pto_body_b[k], p.pto_point_b[k])
+            d0, d1, d2 = a0 - b0, a1 - b1, a2 - b2
+            length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
             x[k] = length
-            gmat[k] = (d / length) @ (jac[0] - jac[1])
+            n0, n1, n2 = d0 / length, d1 / length, d2 / length
+            for c in range(nv):
+                g = 0.0
+                for e in range(2):
+                    body = p.pto_body_a[k] if e == 0 else p.pto_body_b[k]
+                    if body < 0:
+                        continue
+                    point = p.pto_point_a[k] if e == 0 else p.pto_point_b[k]
+                    r = rot[body]
+                    w0, w1, w2 = b[6 * body + 3, c], b[6 * body + 4, c], b[6 * body + 5, c]
+                    y0 = point[1] * w2 - point[2] * w1
+                    y1 = point[2] * w0 - point[0] * w2
+                    y2 = point[0] * w1 - point[1] * w0
+                    j0 = b[6 * body, c] - (r[0, 0] * y0 + r[0, 1] * y1 + r[0, 2] * y2)
+                    j1 = b[6 * body + 1, c] - (r[1, 0] * y0 + r[1, 1] * y1 + r[1, 2] * y2)
+                    j2 = b[6 * body + 2, c] - (r[2, 0] * y0 + r[2, 1] * y1 + r[2, 2] * y2)
+                    sign = 1.0 if e == 0 else -1.0
+                    g += sign * (n0 * j0 + n1 * j1 + n2 * j2)
+                gmat[k, c] = g
 
 
 @kernel
@@ -475,14 +523,19 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
     return x, gmat
 
 
-@kernel
+@inline_kernel
 def _hydrostatic_into(
-    p: Plant, rot: np.ndarray, pos: np.ndarray, disp: np.ndarray, restoring: np.ndarray, out: np.ndarray
+    p: Plant,
+    rot: np.ndarray,
+    pos: np.ndarray,
+    disp: np.ndarray,
+    restoring: np.ndarray,
+    rv: np.ndarray,
+    out: np.ndarray,
 ) -> None:
     """Gravity, buoyancy and the linear hydrostatic and mooring restoring force, world axes, into ``out`` (6n,) [N, N m]
-    (``disp`` and ``restoring`` (n_h,) are scratch)."""
+    (``disp`` and ``restoring`` (n_h,) and ``rv`` (3,) are scratch)."""
     hi = p.hydro_index
-    rv = np.empty(3)
     for k in range(hi.shape[0]):
         i = hi[k] // 6
         a = hi[k] % 6
@@ -491,7 +544,8 @@ def _hydrostatic_into(
         else:
             so3_log_into(rot[i], rv)
             disp[k] = rv[a - 3]
-    out[:] = p.static_force
+    for k in range(out.shape[0]):
+        out[k] = p.static_force[k]
     matvec(p.hydrostatic_stiffness, disp, restoring)
     for k in range(hi.shape[0]):
         out[hi[k]] -= restoring[k]
@@ -502,11 +556,11 @@ def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
     """Gravity, buoyancy and linear hydrostatic restoring force, world axes (6n,) [N, N m]."""
     n_h = p.hydro_index.shape[0]
     out = np.empty(p.static_force.shape[0])
-    _hydrostatic_into(p, rot, pos, np.empty(n_h), np.empty(n_h), out)
+    _hydrostatic_into(p, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out)
     return out
 
 
-@kernel
+@inline_kernel
 def end_stop(p: Plant, k: int, x: float, xdot: float) -> float:
     """Force of PTO k's end stop [N or N m] at stroke ``x`` and rate ``xdot``: a spring on the stroke beyond the
     limit and a damper while engaged; zero inside the limit and for a PTO without an end stop."""
@@ -521,7 +575,7 @@ def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
     return np.array([end_stop(p, k, float(x[k]), float(xdot[k])) for k in range(x.shape[0])])
 
 
-@kernel
+@step_kernel
 def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) -> bool:
     """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` alone, into ``w``:
     the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of gravity, buoyancy,
@@ -533,31 +587,43 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) ->
     """
     place(p, q, w)
     _hydro_jacobian(p, w)
-    act = p.active
-    for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
-        for c in range(w.bat.shape[0]):
-            w.bat[c, k] = w.b[act[k], c]
-    congruence(w.bat, p.active_mass, w.mass_work, w.mass)
-    ok = cholesky(w.mass, w.factor)
     # world loads: gravity, buoyancy, hydrostatics and the given hydro force; through Bw, that is B with the
     # moments in body axes
     force = w.force
-    _hydrostatic_into(p, w.rot, w.pos, w.disp, w.restoring, force)
+    _hydrostatic_into(p, w.rot, w.pos, w.disp, w.restoring, w.vec, force)
     hi = p.hydro_index
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
     for i in range(p.com0.shape[0]):
         _rotate(w.rot[i].T, force[6 * i + 3 : 6 * i + 6], w.vec)
-        force[6 * i + 3 : 6 * i + 6] = w.vec
-    w.gen_config[:] = 0.0
+        for a in range(3):
+            force[6 * i + 3 + a] = w.vec[a]
+    for c in range(w.gen_config.shape[0]):
+        w.gen_config[c] = 0.0
     matvec_t_add(w.b, force, w.gen_config)
     _pto_strokes_into(p, q, w.rot, w.pos, w.b, w.stroke, w.gmat)
     for k in range(w.stroke.shape[0]):
         w.stroke[k] -= p.pto_rest[k]
-    return ok
+    act = p.active
+    for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
+        for c in range(w.bat.shape[0]):
+            w.bat[c, k] = w.b[act[k], c]
+    # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of the
+    # tuples' arrays (measured, not understood); a call as the last statement costs only its own arguments' counts
+    return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
 
 
-@kernel
+@step_kernel
+def _factor_mass(
+    bat: np.ndarray, active_mass: np.ndarray, work: np.ndarray, mass: np.ndarray, factor: np.ndarray
+) -> bool:
+    """M* = B'(M + A_inf)B from ``bat`` (B's active rows, transposed) into ``mass`` and its lower Cholesky factor
+    into ``factor`` (``work`` is scratch); False when M* is not positive definite."""
+    congruence(bat, active_mass, work, mass)
+    return cholesky(mass, factor)
+
+
+@step_kernel
 def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace) -> None:
     """Generalised accelerations at the velocities ``v`` and the configuration in ``w`` (:func:`configure`), into
     ``w.acc``; also the hydro velocities ``w.u``, the PTO rates ``w.xdot`` and forces ``w.f`` (the controller's,
@@ -586,14 +652,15 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
             s += w.vec2[row % 6 - 3]
         w.inertial[k] = -s
     gen = w.gen
-    gen[:] = w.gen_config
+    for c in range(gen.shape[0]):
+        gen[c] = w.gen_config[c]
     matvec_add(w.bat, w.inertial, gen)
     for c in range(gen.shape[0]):
         gen[c] -= p.joint_damping[c] * v[c]  # the joints' own losses
     # the memory force of the newest hydro velocity, through Bw
     matvec(w.bh, v, w.u)
     matvec(newest, w.u, w.load)
-    damping = p.mooring_damping  # the moorings' dampers (zero without moorings)
+    damping = p.mooring_damping  # the moorings' dampers ((0, 0) without moorings: no work)
     for i in range(damping.shape[0]):
         s = 0.0
         for k in range(damping.shape[1]):

@@ -55,7 +55,9 @@ class Plant(NamedTuple):
         force -joint_damping * v) [N m s/rad or N s/m]
     Moorings
         mooring_damping : (n_h, n_h) the moorings' dampers on the hydro DOFs' velocities (world axes, about the
-        centres of mass) [N s/m, N m s/rad]; their springs are in ``hydrostatic_stiffness``
+        centres of mass) [N s/m, N m s/rad], or (0, 0) for a device without them (the time loop then skips them;
+        :func:`mooring_damping_matrix` gives the full matrix either way); their springs are in
+        ``hydrostatic_stiffness``
     """
 
     order: np.ndarray
@@ -220,6 +222,8 @@ def build_plant(
         added = added + coupling.expand(added_mass_correction)
     stiffness_h = coupling.restoring[np.ix_(index, index)] if coupling is not None else np.zeros((0, 0))
     mooring_h = coupling.mooring_damping[np.ix_(index, index)] if coupling is not None else np.zeros((0, 0))
+    if not np.any(mooring_h):  # no dampers: an empty matrix, which the time loop skips
+        mooring_h = np.zeros((0, 0))
     n_pto = len(ptos)
     total = rigid + added
     active = moving_rows(model)
@@ -239,3 +243,19 @@ def build_plant(
         joint_damping=model.joint_damping,
         mooring_damping=np.ascontiguousarray(mooring_h),
     )
+
+
+def mooring_damping_matrix(p: Plant) -> np.ndarray:
+    """The moorings' dampers on the hydro DOFs (n_h, n_h) [N s/m, N m s/rad]: ``p.mooring_damping``, or zeros for
+    a plant without them (stored empty)."""
+    n_h = p.hydro_index.shape[0]
+    if p.mooring_damping.shape != (n_h, n_h):
+        return np.zeros((n_h, n_h))
+    return p.mooring_damping
+
+
+def linear_damping(p: Plant, gmat: np.ndarray, bw: np.ndarray) -> np.ndarray:
+    """Generalised damping (nv, nv) of the linear PTO gains, the joints' own losses and the moorings' dampers at a
+    configuration with PTO transmissions ``gmat`` (n_pto, nv) and hydro rows of the world Jacobian ``bw``
+    (n_h, nv): G' diag(pto_damping) G + diag(joint_damping) + Bw' D_mooring Bw [N s/m, N m s/rad]."""
+    return gmat.T @ np.diag(p.pto_damping) @ gmat + np.diag(p.joint_damping) + bw.T @ mooring_damping_matrix(p) @ bw

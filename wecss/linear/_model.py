@@ -36,7 +36,14 @@ import numpy as np
 import xarray as xr
 from scipy.linalg import expm
 
-from ..compiled import CompiledScene, interpolate_matrices, kinematics, pto_strokes, world_jacobian
+from ..compiled import (
+    CompiledScene,
+    interpolate_matrices,
+    kinematics,
+    linear_damping,
+    pto_strokes,
+    world_jacobian,
+)
 from ..multibody import body_mass_matrix
 from ..radiation import RadiationStateSpace
 from ._modal_recursion import ModalForm, ModalSteps
@@ -506,7 +513,7 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
     database = b.T @ (body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf) @ b
     stiffness = compiled.stiffness  # device springs and the controller's stiffness included
     # the joints' own losses and the moorings' dampers too
-    damping = g.T @ np.diag(p.pto_damping) @ g + np.diag(p.joint_damping) + bw.T @ p.mooring_damping @ bw
+    damping = linear_damping(p, g, bw)
     ds = compiled.hydro.dataset
     hydro = HydroResponse(
         compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values

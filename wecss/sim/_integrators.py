@@ -35,6 +35,7 @@ from ..compiled import (
     matvec_add,
     normalise_quaternions,
     respond,
+    step_kernel,
 )
 from ._memory import block_history, memory_advance
 from ._memory import memory_history as memory_history  # (the step-by-step history, for the tests)
@@ -307,7 +308,7 @@ def beeman_chunk(
     return LoopStatus.OK, step0 + n_steps
 
 
-@kernel
+@step_kernel
 def state_rates(
     p: Plant,
     r: RadiationArrays,

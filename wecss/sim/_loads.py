@@ -146,7 +146,7 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
     carriers = sorted({model.body_names.index(m.body) for m in members if m.hot_spots})
     gathered: dict[int, list[list[np.ndarray]]] = {i: [] for i in carriers}
     gravity = np.array([0.0, 0.0, -compiled.hydro.g])
-    moored = bool(np.any(p.mooring_damping))
+    moored = p.mooring_damping.size > 0  # stored empty without dampers
     worst, scale = 0.0, 0.0
     for t in range(n_t):
         qq, vv = np.ascontiguousarray(q[t]), np.ascontiguousarray(v[t])

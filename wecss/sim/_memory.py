@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compiled import RadiationArrays, RadiationKind, kernel, matvec, matvec_add, reduction_kernel
+from ..compiled import RadiationArrays, RadiationKind, kernel, matvec, matvec_add, reduction_kernel, step_kernel
 
 BLOCK_STEPS: int = 32
 """Steps per block of the convolution's far sums (at most; see :func:`block_length`)."""
@@ -137,7 +137,7 @@ def _add_near(r: RadiationArrays, buf: np.ndarray, pos: int, far_row: np.ndarray
     return out
 
 
-@kernel
+@step_kernel
 def _state_space_history(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray) -> np.ndarray:
     out = np.zeros(u_now.shape[0])
     if r.kind == RadiationKind.STATE_SPACE:
@@ -171,7 +171,7 @@ def block_history(
     return _state_space_history(r, z, u_now)
 
 
-@kernel
+@step_kernel
 def _advance_states(r: RadiationArrays, z: np.ndarray, u_now: np.ndarray, u_new: np.ndarray) -> None:
     """z <- e^{lambda h} z + hold0 u_now + hold1 u_new, on the real and imaginary parts (``r.hold_real``)."""
     n_h = u_now.shape[0]

@@ -17,7 +17,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compiled import CompiledScene, integrate_configuration, kinematics, pto_strokes, world_jacobian
+from ..compiled import (
+    CompiledScene,
+    integrate_configuration,
+    kinematics,
+    linear_damping,
+    pto_strokes,
+    world_jacobian,
+)
 from ..linear import linearize
 from ..scene import SceneError
 
@@ -55,7 +62,7 @@ def _mechanical_eigenvalues(compiled: CompiledScene, q: np.ndarray) -> np.ndarra
     bw = world_jacobian(rot, b)[p.hydro_index]
     _, g = pto_strokes(p, q, rot, pos, b)
     mass = b.T @ p.total_mass @ b
-    damping = g.T @ np.diag(p.pto_damping) @ g + np.diag(p.joint_damping) + bw.T @ p.mooring_damping @ bw
+    damping = linear_damping(p, g, bw)
     a = np.zeros((2 * nv, 2 * nv))
     a[:nv, nv:] = np.eye(nv)
     a[nv:, :nv] = -np.linalg.solve(mass, compiled.stiffness)
