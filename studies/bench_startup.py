@@ -146,7 +146,7 @@ def main(argv: list[str] | None = None) -> int:
         label = "`wecss run` of the default scene shortened to 10 Tp"
     else:
         command = [py, "-m", "wecss.cli", "run", "-o", str(work / "r.nc"), "-q"]
-        label = "`wecss run` (embedded default: m4-134, convolution, 20,000 steps), whole command"
+        label = "`wecss run` (embedded default: m4-134, state space, 20,000 steps), whole command"
     subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True)  # warm the numba cache
 
     def fresh() -> None:
