@@ -220,3 +220,20 @@ def test_rk4_check_takes_the_configurations_the_run_reaches():
     assert limit < compiled.dt and "mechanical modes" in cause
     with pytest.raises(SceneError, match=r"RK4 is unstable for this plant.*cylinder: damping 3.2e\+05"):
         simulate(compiled)
+
+
+def test_a_fit_that_is_not_passive_or_not_stable_gets_a_note():
+    """The note reads the fit report's flags: none for a passive, stable fit; one naming what is wrong otherwise
+    (and for reports stored before the passive flag existed, the sign of the margin)."""
+    from types import SimpleNamespace
+
+    from wecss.sim._guards import fit_notes
+
+    def notes(**attrs):
+        report = SimpleNamespace(attrs={"passivity_margin": 0.0, "stable": 1, "repair": "r", **attrs})
+        return fit_notes(SimpleNamespace(radiation_fit=SimpleNamespace(report=report)))  # type: ignore[arg-type]
+
+    assert notes(passive=1) == []
+    assert "NOT PASSIVE" in notes(passive=0, passivity_margin=-1e-3)[0]
+    assert "not stable to the required damping" in notes(passive=1, stable=0)[0]
+    assert "NOT PASSIVE" in notes(passivity_margin=-1e-3)[0] and notes(passivity_margin=0.0) == []
