@@ -112,3 +112,12 @@ def test_shipped_fits_are_passive(name: str) -> None:
     )
     lowest = _lowest_damping_eigenvalue(model, grid, scale)
     assert lowest.min() >= -1e-12, (lowest.min(), grid[np.argmin(lowest)])
+
+
+def test_a_model_the_enforcement_cannot_fix_is_kept_and_reported() -> None:
+    """K_hat = -1 / (s + 1) on one DOF: negative damping at omega = 0, where no lift reaches, and K_hat(0) = 0 would
+    take all of C. The fitted model comes back unchanged, and the report says it is not passive and why."""
+    model = RadiationStateSpace(np.array([[-1.0]]), np.array([[1.0]]), np.array([[-1.0]]), ("p__Heave",))
+    same, report = enforce_passivity(model, np.linspace(0.05, 10.0, 200), np.array([1.0]))
+    assert same is model and report.after is not None and not report.after.passive
+    assert str(report).startswith("NOT PASSIVE: enforcement failed") and "omega = 0" in str(report)

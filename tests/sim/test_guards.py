@@ -237,3 +237,23 @@ def test_a_fit_that_is_not_passive_or_not_stable_gets_a_note():
     assert "NOT PASSIVE" in notes(passive=0, passivity_margin=-1e-3)[0]
     assert "not stable to the required damping" in notes(passive=1, stable=0)[0]
     assert "NOT PASSIVE" in notes(passivity_margin=-1e-3)[0] and notes(passivity_margin=0.0) == []
+
+
+def test_a_fit_far_off_its_targets_gets_a_note():
+    """A fit report whose largest error is more than 10 x its target: the note names it and the convolution."""
+    from types import SimpleNamespace
+
+    import xarray as xr
+
+    from wecss.sim._guards import fit_notes
+
+    def notes(k0_error: float):
+        report = xr.Dataset(
+            {"k0_error": ("entry", [0.001, k0_error]), "rms_error": ("entry", [0.001, 0.002])},
+            attrs={"passivity_margin": 0.0, "passive": 1, "stable": 1, "repair": "r", "k0_tol": 0.01, "rms_tol": 0.01},
+        )
+        return fit_notes(SimpleNamespace(radiation_fit=SimpleNamespace(report=report)))  # type: ignore[arg-type]
+
+    assert notes(0.05) == []
+    (note,) = notes(0.5)
+    assert "k0 error is 50 times its target" in note and "convolution" in note

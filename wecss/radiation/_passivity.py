@@ -63,6 +63,9 @@ CUT_OVERSHOOT: float = 0.05
 """Each cut asks for this share more than the violation it removes, so that the next round's eigenvectors (which
 differ slightly) are covered too [-]."""
 
+MAX_SYMMETRY_CHANGE: float = 0.25
+"""Largest change of C (relative, Frobenius) the symmetry correction may make: more would not be a correction."""
+
 MAX_ROUNDS: int = 80
 """Most rounds of cutting planes."""
 
@@ -227,6 +230,8 @@ class Passivation:
         Largest added damping over the data band, as a share of the DOF's peak damping [-].
     rounds : int
         Rounds of cutting planes.
+    conditions : str
+        What the change of C imposed (:func:`symmetry_correction`).
     skipped : str
         Why no enforcement was attempted ("" when it was).
     """
@@ -237,18 +242,19 @@ class Passivation:
     lift_states: int = 0
     lift_in_band: float = 0.0
     rounds: int = 0
+    conditions: str = ""
     skipped: str = ""
 
     def __str__(self) -> str:
         if self.skipped:
-            return f"NOT PASSIVE: enforcement not attempted ({self.skipped})"
+            return f"NOT PASSIVE: {self.skipped}"
         if self.before is None or self.after is None:
             return "no enforcement"
         state = "passive" if self.after.passive else "NOT PASSIVE"
         return (
             f"{state}: scaled margin {self.before.margin:.3g} -> {self.after.margin:.3g} on the grid to "
             f"{self.after.grid_end:.3g} rad/s, tail bound from {self.after.tail.omega_tail:.3g} rad/s; C changed by "
-            f"{self.symmetry_change:.2e} relative (K(0) symmetric, zero damping at omega = 0); lift of "
+            f"{self.symmetry_change:.2e} relative ({self.conditions}); lift of "
             f"{self.lift_states} states, at most {self.lift_in_band:.2e} of a DOF's peak damping over the data band, "
             f"{self.rounds} rounds"
         )
@@ -261,8 +267,22 @@ def _checked_scale(model: RadiationStateSpace, scale: np.ndarray) -> np.ndarray:
     return scale
 
 
-def symmetry_correction(model: RadiationStateSpace) -> RadiationStateSpace:
-    """The least (Frobenius) change of C making C A^-1 B zero and C B and C A^-2 B symmetric (module docstring)."""
+CONDITIONS: dict[str, str] = {
+    "zero": "zero damping at omega = 0",
+    "k0": "K(0) symmetric",
+    "slope": "C A^-2 B symmetric",
+}
+"""The conditions :func:`symmetry_correction` imposes on C, by key."""
+
+
+def symmetry_correction(model: RadiationStateSpace) -> tuple[RadiationStateSpace, tuple[str, ...]]:
+    """The least (Frobenius) change of C making C A^-1 B zero and C B and C A^-2 B symmetric (module docstring).
+
+    A model with few states may not have enough freedom in C for all three (the equations outnumber C's entries or
+    are dependent), or only at the price of a large change: then the largest of the sets (zero, k0), (k0,) that C
+    satisfies exactly with a change of at most MAX_SYMMETRY_CHANGE of its norm is imposed, K(0) symmetric first
+    (the tail bound needs it), or none. Returns the model and the keys of :data:`CONDITIONS` imposed.
+    """
     n, nx = len(model.dofs), model.n_states
     a_inv_b = np.linalg.solve(model.A, model.B)
     a_inv2_b = np.linalg.solve(model.A, a_inv_b)
@@ -277,13 +297,23 @@ def symmetry_correction(model: RadiationStateSpace) -> RadiationStateSpace:
         value = model.C @ m
         return rows[upper] - rows[upper[1], upper[0]], -(value[upper] - value.T[upper])
 
-    zero_rows, zero_rhs = product_rows(a_inv_b), -(model.C @ a_inv_b).ravel()
-    k0_rows, k0_rhs = skew_rows(model.B)
-    slope_rows, slope_rhs = skew_rows(a_inv2_b)
-    rows = np.vstack([zero_rows, k0_rows, slope_rows])
-    rhs = np.concatenate([zero_rhs, k0_rhs, slope_rhs])
-    delta = np.linalg.lstsq(rows, rhs, rcond=None)[0].reshape(n, nx)
-    return model.with_matrices(C=model.C + delta)
+    equations = {
+        "zero": (product_rows(a_inv_b), -(model.C @ a_inv_b).ravel()),
+        "k0": skew_rows(model.B),
+        "slope": skew_rows(a_inv2_b),
+    }
+    for keys in (("zero", "k0", "slope"), ("zero", "k0"), ("k0",)):
+        rows = np.vstack([equations[k][0] for k in keys])
+        rhs = np.concatenate([equations[k][1] for k in keys])
+        if rows.shape[0] == 0:
+            return model, keys  # nothing to impose (one DOF: C B and C A^-2 B are symmetric)
+        if rows.shape[0] > rows.shape[1]:
+            continue
+        delta, _, rank, _ = np.linalg.lstsq(rows, rhs, rcond=None)
+        small = np.linalg.norm(delta) <= MAX_SYMMETRY_CHANGE * np.linalg.norm(model.C)
+        if rank == rows.shape[0] and small:  # every equation satisfied exactly (to rounding), C barely changed
+            return model.with_matrices(C=model.C + delta.reshape(n, nx)), keys
+    return model, ()
 
 
 def lift_sections(omega_top: float) -> list[tuple[float, float]]:
@@ -397,10 +427,17 @@ def enforce_passivity(
     if before.passive:
         return model, Passivation(before, before)
     if model.n_states > MAX_ENFORCE_STATES:
-        why = f"{model.n_states} states > MAX_ENFORCE_STATES = {MAX_ENFORCE_STATES}"
+        why = f"enforcement not attempted ({model.n_states} states > MAX_ENFORCE_STATES = {MAX_ENFORCE_STATES})"
         return model, Passivation(before, before, skipped=why)
-    corrected = symmetry_correction(model)
+    corrected, conditions = symmetry_correction(model)
     change = float(np.linalg.norm(corrected.C - model.C) / max(float(np.linalg.norm(model.C)), 1e-300))
+    at_zero = scaled_damping_eigh(corrected, np.array([0.0]), scale)[0][0]
+    if at_zero[0] < -ROUNDING:  # scaled: each DOF's peak damping is 1; the lift vanishes at omega = 0
+        why = (
+            f"enforcement failed: the damping at omega = 0 has a negative eigenvalue ({at_zero[0]:.3g}, scaled) that "
+            "C could not remove with its few states and no lift reaches; the fitted model is kept"
+        )
+        return model, Passivation(before, before, skipped=why)
     sections = lift_sections(float(omega_data.max()))
     band = omega_data if omega_band is None else np.asarray(omega_band, dtype=float)
     grid = passivity_grid(corrected, omega_data, scale)
@@ -411,6 +448,13 @@ def enforce_passivity(
         if after.passive:
             break
         grid = np.union1d(grid, passivity_grid(lifted, omega_data, scale))
+    if not after.passive:  # never hand back a model changed without reaching passivity
+        why = (
+            f"enforcement failed (scaled margin {after.margin:.3g} after {rounds} rounds of the lift); the fitted "
+            "model is kept"
+        )
+        return model, Passivation(before, before, skipped=why)
     added = sum(np.outer(lift_response(a1, a2, band), w) for (a1, a2), w in zip(sections, weights, strict=True))
     in_band = float(np.max(added))
-    return lifted, Passivation(before, after, change, lifted.n_states - model.n_states, in_band, rounds)
+    imposed = ", ".join(CONDITIONS[k] for k in conditions) or "none"
+    return lifted, Passivation(before, after, change, lifted.n_states - model.n_states, in_band, rounds, imposed)

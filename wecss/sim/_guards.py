@@ -11,6 +11,8 @@ run, which stays a valid solution of the equations it integrates.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..compiled import CompiledScene, poses
@@ -281,10 +283,35 @@ def fit_notes(compiled: CompiledScene) -> list[str]:
     report = compiled.radiation_fit.report.attrs
     margin, stable = float(report["passivity_margin"]), int(report["stable"])
     passive = bool(report.get("passive", margin >= 0))  # fits stored before the passivity enforcement lack it
-    if passive and stable:
-        return []
-    return [
-        f"radiation state-space fit: {'passive' if passive else 'NOT PASSIVE (it can add energy)'}, scaled "
-        f"passivity margin {margin:.3g}, {'stable' if stable else 'not stable to the required damping'}; "
-        f"repair: {report['repair']}"
+    notes = []
+    if not (passive and stable):
+        notes.append(
+            f"radiation state-space fit: {'passive' if passive else 'NOT PASSIVE (it can add energy)'}, scaled "
+            f"passivity margin {margin:.3g}, {'stable' if stable else 'not stable to the required damping'}; "
+            f"repair: {report['repair']}; radiation.method = 'convolution' uses the database's kernel instead"
+        )
+    miss = _largest_target_miss(compiled.radiation_fit.report)
+    if miss is not None and miss[1] > FIT_MISS_FACTOR:
+        notes.append(
+            f"radiation state-space fit: its {miss[0]} is {miss[1]:.3g} times its target (the fit report's "
+            f"largest miss; more than {FIT_MISS_FACTOR:g} x): the memory model is not reliable; "
+            "radiation.method = 'convolution' uses the database's kernel instead"
+        )
+    return notes
+
+
+FIT_MISS_FACTOR: float = 10.0
+"""A state-space fit whose largest error exceeds its target by more than this factor gets a note."""
+
+
+def _largest_target_miss(report: Any) -> tuple[str, float] | None:
+    """(which error, error / target) of the fit report's largest miss, None when the report has no errors."""
+    attrs = report.attrs
+    pairs = [("k0_error", "k0_tol"), ("rms_error", "rms_tol"), ("damping_error", "frequency_tol"),
+             ("added_mass_error", "frequency_tol")]  # fmt: skip
+    ratios = [
+        (name.replace("_", " "), float(np.max(report[name].values)) / float(attrs[tol]))
+        for name, tol in pairs
+        if name in getattr(report, "data_vars", {}) and tol in attrs and np.size(report[name].values)
     ]
+    return max(ratios, key=lambda r: r[1]) if ratios else None
