@@ -419,7 +419,8 @@ def enforce_passivity(
     Returns
     -------
     (model, Passivation)
-        The passive model (or, when the enforcement is not attempted, the given one) and what was done.
+        The passive model (or, when the enforcement is not attempted or fails, the given one: the report says
+        which) and what was done.
     """
     scale = _checked_scale(model, scale)
     omega_data = np.asarray(omega_data, dtype=float)
@@ -442,7 +443,10 @@ def enforce_passivity(
     band = omega_data if omega_band is None else np.asarray(omega_band, dtype=float)
     grid = passivity_grid(corrected, omega_data, scale)
     for _ in range(4):  # the lifted model's grid reaches further (its tail bound): cut there too if needed
-        weights, rounds = _lift_weights(corrected, grid, scale, sections, band)
+        try:
+            weights, rounds = _lift_weights(corrected, grid, scale, sections, band)
+        except RuntimeError as err:  # the linear programme failed
+            return model, Passivation(before, before, skipped=f"enforcement failed ({err}); the fitted model is kept")
         lifted = _with_lift(corrected, weights, scale, sections)
         after = check_passivity(lifted, omega_data, scale)
         if after.passive:
