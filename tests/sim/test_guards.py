@@ -227,10 +227,12 @@ def test_a_fit_that_is_not_passive_or_not_stable_gets_a_note():
     (and for reports stored before the passive flag existed, the sign of the margin)."""
     from types import SimpleNamespace
 
+    import xarray as xr
+
     from wecss.sim._guards import fit_notes
 
     def notes(**attrs):
-        report = SimpleNamespace(attrs={"passivity_margin": 0.0, "stable": 1, "repair": "r", **attrs})
+        report = xr.Dataset(attrs={"passivity_margin": 0.0, "stable": 1, "repair": "r", **attrs})
         return fit_notes(SimpleNamespace(radiation_fit=SimpleNamespace(report=report)))  # type: ignore[arg-type]
 
     assert notes(passive=1) == []

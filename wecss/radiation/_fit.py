@@ -21,7 +21,7 @@ from ..hydro import HydroData
 from ._couplings import significant_couplings
 from ._irf import ImpulseResponse, impulse_response
 from ._modal import hankel_realisation, matrix_pencil, realise
-from ._passivity import Passivation, check_passivity, damping_scale, enforce_passivity
+from ._passivity import Passivation, PassivityCheck, damping_scale, enforce_passivity
 from ._statespace import STABILITY_DAMPING, RadiationStateSpace
 
 Method = Literal["prony", "era", "era-mimo"]
@@ -345,12 +345,12 @@ def fit_radiation(
         model, rows, dropped, ref = _fit_per_entry(hydro, irf, settings)
     fitted = model
     model, passivation = enforce_passivity(model, hydro.omega, damping_scale(ref.damping), omega_band=ref.omega)
+    assert passivation.after is not None  # enforce_passivity checks the model it returns
     if model is not fitted:  # the report judges the final (passive) model
         kernel = model.kernel(ref.time)
         response = model.frequency_response(ref.omega)
         rows = [(i, j, order, *ref.errors(i, j, kernel[:, i, j], response[:, i, j])) for i, j, order, *_ in rows]
-    check = passivation.after or check_passivity(model, hydro.omega, damping_scale(ref.damping))
-    report = _report(model, rows, dropped, settings, passivation, check, irf)
+    report = _report(model, rows, dropped, settings, passivation, passivation.after, irf)
     if key is not None:
         from . import _cache
 
@@ -359,7 +359,7 @@ def fit_radiation(
 
 
 def _report(
-    model, rows, dropped, settings: FitSettings, passivation: Passivation, check, irf: ImpulseResponse
+    model, rows, dropped, settings: FitSettings, passivation: Passivation, check: PassivityCheck, irf: ImpulseResponse
 ) -> xr.Dataset:
     dofs = irf.dofs
     names = [f"{dofs[i]}|{dofs[j]}" for i, j, *_ in rows]

@@ -133,13 +133,15 @@ def tail_bound(model: RadiationStateSpace, scale: np.ndarray) -> Tail:
     return Tail(mu, skew, rho + 2 * r / mu, mu / (2 * skew) if skew > 0 else float("inf"))
 
 
-def passivity_grid(model: RadiationStateSpace, omega_data: np.ndarray, scale: np.ndarray, n: int = 4000) -> np.ndarray:
+def passivity_grid(
+    model: RadiationStateSpace, omega_data: np.ndarray, scale: np.ndarray, n: int = 4000, tail: Tail | None = None
+) -> np.ndarray:
     """Frequencies [rad/s] on which the passivity of ``model`` is checked (module docstring).
 
     0; ``n`` points (linear and geometric from 1 % of the lowest data frequency) up to 1.5 times the largest of the
     highest data frequency and the poles' moduli; eleven points across every resonance (w + k sigma,
     k in 0, +-0.25, +-0.5, +-1, +-2, +-4); 100 per decade beyond, up to 1.1 x the larger of ten times that top and
-    ``omega_tail`` of :func:`tail_bound` (capped at 1e9 rad/s).
+    ``omega_tail`` of :func:`tail_bound` (capped at 1e9 rad/s; ``tail``: the bound when already known).
     """
     omega_data = np.asarray(omega_data, dtype=float)
     if omega_data.size == 0 or not np.any(omega_data > 0):
@@ -147,8 +149,8 @@ def passivity_grid(model: RadiationStateSpace, omega_data: np.ndarray, scale: np
     low = 0.01 * float(omega_data[omega_data > 0].min())
     lam = model.poles()
     top = 1.5 * max(float(np.max(omega_data)), float(np.max(np.abs(lam))) if lam.size else 0.0)
-    tail = tail_bound(model, scale).omega_tail
-    far = 1.1 * min(max(tail, 10 * top), 1e9) if np.isfinite(tail) else 10 * top
+    omega_tail = (tail or tail_bound(model, scale)).omega_tail
+    far = 1.1 * min(max(omega_tail, 10 * top), 1e9) if np.isfinite(omega_tail) else 10 * top
     steps = np.array([0.0, 0.25, 0.5, 1.0, 2.0, 4.0])
     steps = np.concatenate([-steps[1:], steps])
     upper = lam[lam.imag > 0]
@@ -203,8 +205,8 @@ class PassivityCheck:
 
 def check_passivity(model: RadiationStateSpace, omega_data: np.ndarray, scale: np.ndarray) -> PassivityCheck:
     """Check ``model`` on :func:`passivity_grid` and with :func:`tail_bound` (module docstring)."""
-    grid = passivity_grid(model, omega_data, scale)
     tail = tail_bound(model, scale)
+    grid = passivity_grid(model, omega_data, scale, tail=tail)
     if model.n_states == 0:
         return PassivityCheck(0.0, 0.0, tail, float(grid[-1]), True)
     values = scaled_damping_eigh(model, grid, scale)[0]

@@ -11,9 +11,8 @@ run, which stays a valid solution of the equations it integrates.
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
+import xarray as xr
 
 from ..compiled import CompiledScene, poses
 from ..linear import equilibrium_maps
@@ -304,7 +303,7 @@ FIT_MISS_FACTOR: float = 10.0
 """A state-space fit whose largest error exceeds its target by more than this factor gets a note."""
 
 
-def _largest_target_miss(report: Any) -> tuple[str, float] | None:
+def _largest_target_miss(report: xr.Dataset) -> tuple[str, float] | None:
     """(which error, error / target) of the fit report's largest miss, None when the report has no errors."""
     attrs = report.attrs
     pairs = [("k0_error", "k0_tol"), ("rms_error", "rms_tol"), ("damping_error", "frequency_tol"),
@@ -312,6 +311,6 @@ def _largest_target_miss(report: Any) -> tuple[str, float] | None:
     ratios = [
         (name.replace("_", " "), float(np.max(report[name].values)) / float(attrs[tol]))
         for name, tol in pairs
-        if name in getattr(report, "data_vars", {}) and tol in attrs and np.size(report[name].values)
+        if name in report.data_vars and tol in attrs and report[name].size
     ]
     return max(ratios, key=lambda r: r[1]) if ratios else None
