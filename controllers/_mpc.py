@@ -159,16 +159,7 @@ class MPC(Controller):
         if exc is None or exc.omega.size == 0:
             raise ValueError("mpc plans with the sea state's excitation; the scene's sea is calm")
         period, steps = context.control_period, self.horizon
-        plant = context.linear_model()
-        built_for = (plant, exc, (period, tuple(context.force_limit), tuple(context.stroke_limit)))
-        last = getattr(self, "_built_for", None)
-        if last is not None and last[0] is plant and last[1] is exc and last[2] == built_for[2]:
-            # set up again for the same plant and sea (the simulators do so per run): keep the build, but a fresh
-            # solver (no warm start carried from an earlier run, so that every run is the same)
-            self.path = self._solver_path()
-            self._start()
-            return
-        model = self._reduced(plant, period)
+        model = self._reduced(context.linear_model(), period)
         self.preview_horizon = steps * period if self.preview == "perfect" else None
         tuned = optimal_damping(model, exc.omega, exc.coefficients)
         c_opt = np.maximum(tuned.damping, 1e-12 * max(float(np.max(tuned.damping)), 1e-300))
@@ -187,7 +178,6 @@ class MPC(Controller):
             stroke_at_equilibrium=model.pto_stroke, force_penalty=penalty, force_scale=np.sqrt(power * c_opt),
             energy_scale=float(np.sum(power)) * steps * period, rate_limit=rate, slack_weights=self.stroke_weights,
         )  # fmt: skip
-        self.path = self._solver_path()
         self.fallback_damping = c_opt
         self.force_limit = np.asarray(context.force_limit, dtype=float)
         self.hydro_jacobian = model.hydro_jacobian
@@ -208,8 +198,7 @@ class MPC(Controller):
             self.predictor = ARPredictor(self.ar_order).fit(
                 _synthetic_record(model, exc.omega, exc.coefficients, period, self.ar_order)
             )
-        self._built_for = built_for
-        self._start()
+        self.reset()
 
     def _solver_path(self) -> OsqpPath | CvxpyPath:
         """A new solver of the built programme (the direct OSQP path or cvxpy's)."""
@@ -229,7 +218,10 @@ class MPC(Controller):
         self.radiation_measured_error = error
         return model.with_radiation(reduction.model)
 
-    def _start(self) -> None:
+    def reset(self) -> None:
+        """A fresh start for a run: a new solver (no warm start carried from an earlier run, so that every run is
+        the same), no plan, the filter at rest."""
+        self.path = self._solver_path()
         n_pto = self.model.n_pto
         self.applied = np.zeros(n_pto)
         self.plan: np.ndarray | None = None

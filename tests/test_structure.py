@@ -183,8 +183,8 @@ def test_the_checks_find_a_cycle_and_a_private_import():
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert _cycles({"a": {"b"}, "b": set()}) == []
     modules = _modules()
-    path = ROOT / "wecss" / "sim" / "_result.py"
-    assert "wecss.compiled" in _imports("wecss.sim._result", path, modules)
+    path = ROOT / "wecss" / "sim" / "_dataset.py"
+    assert "wecss.control" in _imports("wecss.sim._dataset", path, modules)
 
 
 @pytest.mark.parametrize(

@@ -1,4 +1,5 @@
-"""The one table of ``long_name`` and ``units`` for every variable and coordinate wecss writes.
+"""The one place wecss looks up ``long_name`` and ``units`` of every variable and coordinate it writes: the
+hydrodynamic databases' table here, and the result variables' from the output table (``wecss.outputs``).
 
 Datasets made by wecss take their CF-style attributes from :data:`VARIABLE_ATTRS` through
 :func:`apply_attrs`, so the same name always carries the same meaning and units.
@@ -11,6 +12,8 @@ from collections.abc import Hashable, Mapping
 
 import numpy as np
 import xarray as xr
+
+from .outputs import variable_attrs
 
 VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     # coordinates
@@ -63,112 +66,15 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
         "long_name": "point about which the body's rotational coefficients are given",
         "units": "m",
     },
-    # simulation results
-    "time": {"long_name": "time", "standard_name": "time", "units": "s"},
-    "dof_linear": {"long_name": "translational generalised coordinate (joint__label)"},
-    "dof_angular": {"long_name": "rotational generalised coordinate (joint__label)"},
-    "pto": {"long_name": "power take-off (in the device spec's order)"},
-    "pto_kind": {"long_name": "kind of power take-off: rotary (on a revolute joint) or linear (prismatic or actuator)"},
-    "hydro_dof_linear": {"long_name": "translational degree of freedom of the hydrodynamic database (body__Dof)"},
-    "hydro_dof_angular": {"long_name": "rotational degree of freedom of the hydrodynamic database (body__Dof)"},
-    "displacement": {"long_name": "translational generalised coordinate", "units": "m"},
-    "angle": {"long_name": "rotational generalised coordinate", "units": "rad"},
-    "velocity": {"long_name": "translational generalised velocity", "units": "m/s"},
-    "angular_velocity": {"long_name": "rotational generalised velocity", "units": "rad/s"},
-    "acceleration": {"long_name": "translational generalised acceleration", "units": "m/s^2"},
-    "angular_acceleration": {"long_name": "rotational generalised acceleration", "units": "rad/s^2"},
-    "pto_angle": {
-        "long_name": "rotary PTO stroke: joint angle from the spring's rest angle (NaN for linear PTOs)",
-        "units": "rad",
-    },
-    "pto_angular_velocity": {"long_name": "rotary PTO stroke rate (NaN for linear PTOs)", "units": "rad/s"},
-    "pto_torque": {
-        "long_name": "rotary PTO torque (spring, controller), positive driving the angle up (NaN for linear PTOs)",
-        "units": "N m",
-    },
-    "pto_displacement": {"long_name": "linear PTO stroke from the rest length (NaN for rotary PTOs)", "units": "m"},
-    "pto_velocity": {"long_name": "linear PTO stroke rate (NaN for rotary PTOs)", "units": "m/s"},
-    "pto_force": {
-        "long_name": "linear PTO force (spring, controller), positive extending (NaN for rotary PTOs)",
-        "units": "N",
-    },
-    "pto_power": {
-        "long_name": "power absorbed by the PTO, -(force - device spring force) * stroke rate",
-        "units": "W",
-    },
-    "mean_pto_power": {"long_name": "mean absorbed PTO power over the statistics window", "units": "W"},
-    "rms_pto_angle": {
-        "long_name": "RMS rotary PTO angle about its mean over the statistics window (NaN for linear PTOs)",
-        "units": "rad",
-    },
-    "rms_pto_displacement": {
-        "long_name": "RMS linear PTO stroke about its mean over the statistics window (NaN for rotary PTOs)",
-        "units": "m",
-    },
-    "power_bound": {
-        "long_name": "complex-conjugate bound of mean absorbed power for the wave components (linear, unconstrained)",
-        "units": "W",
-    },
-    "force_limit_time": {
-        "long_name": "time the controller's force was saturated at the PTO's force limit",
-        "units": "s",
-    },
-    "force_limit_episodes": {"long_name": "times the controller's force reached the PTO's force limit", "units": "1"},
-    "stroke_limit_time": {"long_name": "time the PTO stroke was beyond its limit (end stop engaged)", "units": "s"},
-    "stroke_limit_episodes": {"long_name": "times the PTO stroke passed its limit (end stop engaged)", "units": "1"},
-    # frequency-domain steady state (wecss.linear.steady_state)
+    # frequency-domain steady state (wecss.linear.steady_state); the results' variables come from wecss.outputs
     "wave_amplitude": {
         "long_name": "complex amplitude of the undisturbed wave elevation at the origin, Re[X exp(+i omega t)]",
         "units": "m",
     },
-    "excitation_force": {"long_name": "wave excitation force, world axes", "units": "N"},
-    "excitation_moment": {"long_name": "wave excitation moment about the centre of mass, world axes", "units": "N m"},
-    "radiation_force": {"long_name": "radiation memory force (without the A_inf part), world axes", "units": "N"},
-    "radiation_moment": {"long_name": "radiation memory moment (without the A_inf part), world axes", "units": "N m"},
-    "hydro_velocity": {"long_name": "velocity of the centre of mass, world axes", "units": "m/s"},
-    "hydro_angular_velocity": {"long_name": "angular velocity, world axes", "units": "rad/s"},
-    "wave_elevation": {
-        "long_name": "undisturbed wave elevation at the origin, as applied (with the start ramp)",
-        "units": "m",
-    },
-    "body_position": {"long_name": "position of the body's centre of mass, world frame", "units": "m"},
-    "body_rotation": {"long_name": "rotation vector of the body from its reference orientation", "units": "rad"},
-    "joint_reaction_force": {
-        "long_name": "reaction force of the joint on its child's subtree, world axes",
-        "units": "N",
-    },
-    "joint_reaction_moment": {
-        "long_name": "reaction moment of the joint on its child's subtree about the joint point, world axes",
-        "units": "N m",
-    },
-    "joint_reaction_force_local": {"long_name": "joint reaction force, axes of the child body", "units": "N"},
-    "joint_reaction_moment_local": {"long_name": "joint reaction moment, axes of the child body", "units": "N m"},
-    "pto_end_force": {"long_name": "PTO force on the body at each end, at the attachment, world axes", "units": "N"},
-    "pto_end_moment": {
-        "long_name": "PTO moment (joint PTO torque) on the body at each end, world axes",
-        "units": "N m",
-    },
-    "hot_spot": {"long_name": "hot spot of a beam member (member.spot)"},
-    "section_axis": {"long_name": "member axes: x along the member from start to end, z up across it"},
-    "section_force": {
-        "long_name": "section force at the hot spot's station (N along x, shears Vy, Vz), member axes",
-        "units": "N",
-    },
-    "section_moment": {
-        "long_name": "section moment at the hot spot's station about the section centre (T, My, Mz), member axes",
-        "units": "N m",
-    },
-    "axial_stress": {"long_name": "axial stress N/A at the hot spot, times its SCF (tension positive)", "units": "Pa"},
-    "bending_stress": {"long_name": "bending stress My z/Iy - Mz y/Iz at the hot spot, times its SCF", "units": "Pa"},
-    "normal_stress": {"long_name": "normal stress (axial plus bending) at the hot spot, times its SCF", "units": "Pa"},
-    "shear_stress": {"long_name": "torsional shear stress T/W_t at the hot spot, times its SCF", "units": "Pa"},
-    "von_mises_stress": {"long_name": "von Mises stress at the hot spot", "units": "Pa"},
-    "signed_von_mises_stress": {
-        "long_name": "signed von Mises stress at the hot spot: the sign of the largest principal stress (Eq. 53)",
-        "units": "Pa",
-    },
+    **variable_attrs(),
 }
-"""Attributes by variable name. Coefficient matrices mix units by block, as the text says."""
+"""Attributes by variable name: the hydrodynamic databases' here, a run's from the output table
+(``wecss.outputs``). Coefficient matrices mix units by block, as the text says."""
 
 
 def by_pto_kind(

@@ -16,7 +16,7 @@ from wecss.compiled import (
 )
 from wecss.compiled._linalg import congruence, matvec_t_add
 from wecss.radiation import RadiationStateSpace
-from wecss.sim._integrators import memory_advance, memory_history
+from wecss.sim._memory import memory_advance, memory_history
 
 
 def _spd(rng: np.random.Generator, n: int) -> np.ndarray:

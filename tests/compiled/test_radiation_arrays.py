@@ -9,7 +9,7 @@ from tests.radiation.analytic import analytic_hydro, known_system, response
 from wecss.compiled import added_mass_correction, from_impulse_response, from_state_space
 from wecss.compiled import memory_response as frequency_response
 from wecss.radiation import RadiationStateSpace, impulse_response
-from wecss.sim._integrators import memory_advance, memory_history
+from wecss.sim._memory import memory_advance, memory_history
 
 
 def test_state_space_arrays_have_the_model_response():

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import wecss.sim._nonlinear as nonlinear
+import wecss.sim._explicit as explicit
 from tests.sim.scenes import scene
 from wecss.compiled import kinematics
 from wecss.linear import linearize
@@ -60,7 +60,7 @@ def test_iteration_factor_is_the_spectral_radius_of_the_added_over_the_rigid_mas
 
 
 def test_an_iteration_that_cannot_converge_is_refused_before_the_run(monkeypatch):
-    monkeypatch.setattr(nonlinear, "MAX_ITERATION_FACTOR", 0.1)  # m4-134's factor is about 0.6
+    monkeypatch.setattr(explicit, "MAX_ITERATION_FACTOR", 0.1)  # m4-134's factor is about 0.6
     with pytest.raises(SceneError, match=r"added-mass iteration cannot converge .* spectral radius"):
         _run("explicit")
 

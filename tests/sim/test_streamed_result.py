@@ -9,11 +9,12 @@ import numpy as np
 import pytest
 import xarray as xr
 
-import wecss.sim._nonlinear as nonlinear
+import wecss.sim._fixed_step as fixed_step
+import wecss.sim._stream as stream_module
 from tests.sim.scenes import held, scene
 from wecss.results import open_result, save
 from wecss.sim import SimulationDiverged, compile_scene, simulate
-from wecss.sim._simulate import streamed
+from wecss.sim._stream import streamable as streamed
 
 #: Attributes that differ between two runs of the same scene (the clock).
 CLOCK = ("history", "run_time_s", "steps_per_second")
@@ -49,8 +50,8 @@ def _assert_same_file(whole, streamed_file) -> None:
 def small_parts(monkeypatch):
     """Kernel calls of 100 steps and parts of at least 230 (300), so that a short run is written in many (the
     defaults are 2,000 and 10,000)."""
-    monkeypatch.setattr(nonlinear, "CHUNK_STEPS", 100)
-    monkeypatch.setattr(nonlinear, "STREAM_STEPS", 230)
+    monkeypatch.setattr(fixed_step, "CHUNK_STEPS", 100)
+    monkeypatch.setattr(fixed_step, "STREAM_STEPS", 230)
 
 
 @pytest.mark.parametrize(
@@ -108,8 +109,8 @@ def test_runs_not_streamed_write_the_saved_dataset(tmp_path, method):
 
 
 def test_a_diverging_run_leaves_a_partial_file_of_its_good_steps(tmp_path, monkeypatch):
-    monkeypatch.setattr(nonlinear, "CHUNK_STEPS", 50)
-    monkeypatch.setattr(nonlinear, "STREAM_STEPS", 100)
+    monkeypatch.setattr(fixed_step, "CHUNK_STEPS", 50)
+    monkeypatch.setattr(fixed_step, "STREAM_STEPS", 100)
     # a hinge bound the waves pass after a few parts: the run stops with SimulationDiverged
     compiled = compile_scene(scene("m4-111", solver={"angle_bound": 0.02}))
     with pytest.raises(SimulationDiverged) as caught:
@@ -128,7 +129,7 @@ def test_a_diverging_run_leaves_a_partial_file_of_its_good_steps(tmp_path, monke
 def test_an_interrupted_run_leaves_a_partial_file(tmp_path, small_parts, monkeypatch):
     compiled = compile_scene(scene("m4-111"))
     calls = []
-    add = nonlinear.ResultStream.add
+    add = stream_module.ResultStream.add
 
     def interrupt_third(self, part):  # Ctrl-C after the second part
         calls.append(part.time.size)
@@ -136,7 +137,7 @@ def test_an_interrupted_run_leaves_a_partial_file(tmp_path, small_parts, monkeyp
             raise KeyboardInterrupt
         add(self, part)
 
-    monkeypatch.setattr(nonlinear.ResultStream, "add", interrupt_third)
+    monkeypatch.setattr(stream_module.ResultStream, "add", interrupt_third)
     with pytest.raises(KeyboardInterrupt):
         simulate(compiled, path=tmp_path / "run.nc")
     with xr.open_dataset(tmp_path / "run.partial.nc") as ds:

@@ -1,5 +1,6 @@
 """Compile a scene into flat arrays once: the plant, the radiation memory, the wave components. The controller is
-attached afterwards (``wecss.control.compile_scene``), its linear gains folded in by :func:`with_linear_gains`.
+attached afterwards (``wecss.control.compile_scene`` makes a ``ControlledScene``), its linear gains folded in by
+:func:`with_linear_gains`.
 
 Everything that can fail on bad input fails here, before the time loop, with a message that says what to change.
 Whatever is dropped to save time (wave components, radiation couplings, components outside the database's
@@ -26,8 +27,9 @@ from ..devices import load as load_device
 from ..hydro import HydroData, without_body_interactions
 from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
-from ..scene import DeviceChoice, Radiation, Scene, SceneError, SeaState, Solver
+from ..scene import Radiation, Scene, SceneError, SeaState
 from ._plant import Plant, build_plant
+from ._pto_law import pto_gains
 from ._radiation import (
     RadiationArrays,
     RadiationKind,
@@ -60,13 +62,10 @@ class CompiledScene:
     spectrum : Spectrum or None
         The sea state's spectrum (None for regular waves, measured elevations and calm water).
     excitation : ExcitationModel or None
-    controller : wecss.control.Controller or None
-        The controller set up with ``control_context`` (None for a plant compiled without one:
-        :func:`compile_plant`).
-    control_context : wecss.control.ControlContext or None
-        What the controller is told at every (re)start of a run.
     linear_controller : bool
-        The controller's linear gains act inside the equations of motion (else its force is held over each step).
+        A controller's linear gains act inside the equations of motion (:func:`with_linear_gains`; else a
+        controller's force is held over each control period). The controller itself comes with the scene it is
+        attached to (``wecss.control.ControlledScene``).
     statics : StaticModel
         Gravity, hydrostatics and the PTO springs (device springs plus the controller's linear stiffness).
     q0 : ndarray
@@ -74,7 +73,7 @@ class CompiledScene:
     stiffness : ndarray (nv, nv)
         Static stiffness K* at q0 with its geometric part and the controller's linear stiffness [SI].
     dt : float
-        Step [s].
+        Step [s], the scene's, read once; the radiation arrays were made for it (checked).
     n_steps : int
     bounded : ndarray of int
         Coordinates (revolute joint angles) checked against ``solver.angle_bound``.
@@ -92,8 +91,6 @@ class CompiledScene:
     waves: wv.WaveComponents | None
     spectrum: wv.Spectrum | None
     excitation: wv.ExcitationModel | None
-    controller: Any
-    control_context: Any
     linear_controller: bool
     statics: StaticModel
     q0: np.ndarray
@@ -102,6 +99,15 @@ class CompiledScene:
     n_steps: int
     bounded: np.ndarray
     notes: list[str] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        if self.dt != self.scene.dt:
+            raise ValueError(f"compiled step {self.dt!r} s differs from the scene's {self.scene.dt!r} s")
+        if self.radiation.dt not in (0.0, self.dt):
+            raise ValueError(
+                f"the radiation memory was discretised for a step of {self.radiation.dt!r} s, the scene's is "
+                f"{self.dt!r} s"
+            )
 
     @property
     def hydro(self) -> HydroData:
@@ -156,8 +162,7 @@ class CompiledScene:
         return cached
 
 
-def _device(scene: Scene) -> Device:
-    name = scene.device.name
+def _device(name: str) -> Device:
     if name.endswith(".toml"):
         if not Path(name).is_file():
             raise SceneError(f"device.name: no device spec at {name!r}")
@@ -253,23 +258,22 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
 
 
 def make_radiation(
-    scene: Scene, coupling: HydroCoupling, dt: float
+    radiation: Radiation, coupling: HydroCoupling, dt: float
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
-    """The radiation memory arrays of the scene's method, and the state-space fit they were made from."""
+    """The radiation memory arrays of the ``radiation`` settings for the step ``dt`` [s] on the database of
+    ``coupling``, and the state-space fit they were made from (None for the other methods)."""
     from ..radiation import fit_radiation, impulse_response
 
-    method = scene.radiation.method
+    kind = RadiationKind.from_method(radiation.method)
     n_h = len(coupling.hydro.dofs)
-    if scene.solver.method == "frequency":  # the frequency domain uses A(omega), B(omega): no memory model
-        return no_radiation(n_h)[0], RadiationSummary("frequency"), None
-    if method == "none":
+    if kind == RadiationKind.NONE:
         return (*no_radiation(n_h), None)
-    if method == "convolution":
+    if kind == RadiationKind.CONVOLUTION:
         arrays, summary = from_impulse_response(
-            impulse_response(coupling.hydro), dt, coupling_threshold=scene.radiation.coupling_threshold
+            impulse_response(coupling.hydro), dt, coupling_threshold=radiation.coupling_threshold
         )
         return arrays, summary, None
-    settings, band = fit_request(scene, coupling.hydro)
+    settings, band = fit_request(radiation, coupling.hydro)
     fit = fit_radiation(coupling.hydro, settings, cache=True, band=band)
     return (*from_state_space(fit.model, dt), fit)
 
@@ -305,12 +309,12 @@ def check_step(dt: float, waves: wv.WaveComponents) -> list[str]:
     return []
 
 
-def fit_request(scene: Scene, hydro: HydroData) -> tuple[FitSettings, tuple[float, float] | None]:
-    """The fit settings (with the scene's coupling threshold) and band [rad/s] a scene's state-space radiation
-    asks for."""
+def fit_request(radiation: Radiation, hydro: HydroData) -> tuple[FitSettings, tuple[float, float] | None]:
+    """The fit settings (with the coupling threshold) and band [rad/s] the ``radiation`` settings of a scene ask
+    for on the database ``hydro``."""
     top = float(hydro.omega[-1])
-    band = (scene.radiation.band * top, top) if scene.radiation.band > 0 else None
-    settings = FitSettings(method=scene.radiation.fit, coupling_threshold=scene.radiation.coupling_threshold)  # type: ignore[arg-type]
+    band = (radiation.band * top, top) if radiation.band > 0 else None
+    settings = FitSettings(method=radiation.fit, coupling_threshold=radiation.coupling_threshold)  # type: ignore[arg-type]
     return settings, band
 
 
@@ -361,7 +365,7 @@ def _device_parts(
     """The device, its coupling to the database (without the radiation between bodies unless ``body_to_body``),
     its statics, equilibrium and static stiffness (cached, keyed also by the stamps of the files read, ``sources``;
     the arrays are read-only)."""
-    device = _device(Scene(device=DeviceChoice(name=name, hydro=hydro), sea=_CALM, solver=_CALM_SOLVER))
+    device = _device(name)
     try:
         database = device.hydro(hydro)
     except FileNotFoundError as err:
@@ -375,24 +379,13 @@ def _device_parts(
     return device, coupling, statics, q0, stiffness
 
 
-_CALM = SeaState(kind="calm", period=None, duration=10.0, ramp=0.0)
-_CALM_SOLVER = Solver(dt=0.01)
-
-
 @functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
 def _radiation_parts(
-    name: str,
-    hydro: str | None,
-    sources: tuple[FileStamp, ...],
-    radiation: Radiation,
-    frequency: bool,
-    dt: float,
+    name: str, hydro: str | None, sources: tuple[FileStamp, ...], radiation: Radiation, dt: float
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
     """The radiation memory of a device for a step (cached, keyed as :func:`_device_parts`)."""
     coupling = _device_parts(name, hydro, sources, radiation.body_to_body)[1]
-    solver = Solver(method="frequency" if frequency else "beeman", dt=dt)
-    scene = Scene(device=DeviceChoice(name=name, hydro=hydro), sea=_CALM, solver=solver, radiation=radiation)
-    return make_radiation(scene, coupling, dt)
+    return make_radiation(radiation, coupling, dt)
 
 
 def clear_compile_cache() -> None:
@@ -432,10 +425,13 @@ def compile_plant(scene: Scene) -> CompiledScene:
                 "wave components outside the database's frequencies left out: "
                 f"{excitation.outside_share:.2e} of the variance"
             )
-    frequency = scene.solver.method == "frequency"
-    radiation, summary, fit = _radiation_parts(name, hydro_name, sources, scene.radiation, frequency, dt)
-    if scene.solver.method == "frequency":
-        notes.append(
+    runner = scene.runner
+    if runner.capabilities.memory_model:
+        radiation, summary, fit = _radiation_parts(name, hydro_name, sources, scene.radiation, dt)
+    else:
+        radiation, summary = no_radiation(len(hydro.dofs))
+        fit = None
+        notes.append(  # a runner without a memory model works in the frequency domain
             "radiation memory not used: the frequency-domain solution takes A(omega) and B(omega) from the database"
         )
     correction = None
@@ -454,17 +450,11 @@ def compile_plant(scene: Scene) -> CompiledScene:
             f"radiation couplings below {scene.radiation.coupling_threshold:g} of sqrt(peak_ii peak_jj) "
             f"dropped: {len(summary.dropped_entries)} of {len(hydro.dofs) ** 2}"
         )
-    if scene.solver.method == "rk4" and summary.max_pole * dt > 2.5:
-        raise SceneError(
-            f"RK4 is unstable with this state-space fit: its fastest pole |s| = {summary.max_pole:.4g} rad/s needs "
-            f"dt < {2.5 / summary.max_pole:.3g} s (given {dt:.3g} s); use 'beeman' (exact in the radiation states) "
-            "or a smaller step"
-        )
     model = device.model
     bounded = [
         model.coordinate_names.index(f"{j.name}__{j.labels[0]}") for j in model.ordered_joints if j.kind == "revolute"
     ]
-    return CompiledScene(
+    compiled = CompiledScene(
         scene=scene,
         device=device,
         coupling=coupling,
@@ -475,8 +465,6 @@ def compile_plant(scene: Scene) -> CompiledScene:
         waves=waves,
         spectrum=spectrum,
         excitation=excitation,
-        controller=None,
-        control_context=None,
         linear_controller=False,
         statics=statics,
         q0=q0.copy(),
@@ -486,23 +474,22 @@ def compile_plant(scene: Scene) -> CompiledScene:
         bounded=np.asarray(bounded, dtype=np.int64),
         notes=notes,
     )
+    runner.check_compiled(compiled)
+    return compiled
 
 
-def with_linear_gains(compiled: CompiledScene, damping: np.ndarray, stiffness: np.ndarray) -> CompiledScene:
-    """``compiled`` with a linear PTO controller f = -c x_dot - k x (one gain per PTO) [SI] in its equations of
-    motion: the plant's gains set, and, for a stiffness, the statics, equilibrium and static stiffness with it
-    (the controller's stiffness acts about the same rest stroke as the device springs).
+def with_linear_gains(compiled: CompiledScene, damping: Any, stiffness: Any) -> CompiledScene:
+    """``compiled`` with a linear PTO controller f = -c x_dot - k x (``wecss.compiled.pto_control_force``; one gain
+    per PTO, or one for all) [SI] in its equations of motion: the plant's gains set, and, for a stiffness, the
+    statics, equilibrium and static stiffness with it (the controller's stiffness acts about the same rest stroke as
+    the device springs).
 
     Raises
     ------
     ValueError
-        If the gains are not finite or not one per PTO.
+        If the gains are not finite, a damping is negative, or they are neither one nor one per PTO.
     """
-    n_pto = compiled.plant.pto_kind.size
-    damping, stiffness = (np.asarray(g, dtype=float) for g in (damping, stiffness))
-    for label, gains in (("damping", damping), ("stiffness", stiffness)):
-        if gains.shape != (n_pto,) or not np.all(np.isfinite(gains)):
-            raise ValueError(f"linear {label} gains: expected {n_pto} finite values; got {gains!r}")
+    damping, stiffness = pto_gains(damping, stiffness, compiled.plant.pto_kind.size)
     plant = compiled.plant._replace(pto_damping=damping.copy(), pto_stiffness=stiffness.copy())
     out = dataclasses.replace(compiled, plant=plant, linear_controller=True)
     if np.any(stiffness != 0):

@@ -18,6 +18,7 @@ import numpy as np
 from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
+from ._pto_law import pto_control_force_kernel
 
 _SMALL = 1e-8
 
@@ -671,7 +672,7 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     matvec(w.gmat, v, w.xdot)
     for k in range(w.stroke.shape[0]):
         x, xdot = w.stroke[k], w.xdot[k]
-        control = command[k] - p.pto_damping[k] * xdot - p.pto_stiffness[k] * x
+        control = pto_control_force_kernel(command[k], p.pto_damping[k], p.pto_stiffness[k], x, xdot)
         limit = p.pto_force_limit[k]
         w.f[k] = min(max(control, -limit), limit) - p.pto_spring[k] * x
         total = w.f[k] + end_stop(p, k, x, xdot)

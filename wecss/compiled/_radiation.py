@@ -40,11 +40,33 @@ fifth of the cost."""
 
 
 class RadiationKind(IntEnum):
-    """How the memory force is computed (the ``kind`` of :class:`RadiationArrays`; numba compares the members)."""
+    """How the memory force is computed (the ``kind`` of :class:`RadiationArrays`; numba compares the members).
+    The scene's ``radiation.method`` names it (:meth:`from_method`, :attr:`method`)."""
 
     NONE = 0
     STATE_SPACE = 1
     CONVOLUTION = 2
+
+    @classmethod
+    def from_method(cls, method: str) -> RadiationKind:
+        """The kind a scene's ``radiation.method`` ("none", "state_space", "convolution") names.
+
+        Raises
+        ------
+        ValueError
+            For another name.
+        """
+        try:
+            return cls[method.upper()]
+        except KeyError:
+            raise ValueError(
+                f"unknown radiation method {method!r}; accepted: {', '.join(k.method for k in cls)}"
+            ) from None
+
+    @property
+    def method(self) -> str:
+        """The scene's name of this kind (``radiation.method``)."""
+        return self.name.lower()
 
 
 class RadiationArrays(NamedTuple):
@@ -57,7 +79,8 @@ class RadiationArrays(NamedTuple):
     first, and a coarse tail (every ``stride``-th lag after the fine part, ``coarse_length[c]`` lags) stored the same
     way in ``coarse``; values carry the quadrature weights and the sign (force = sum of value * velocity), and
     entries with a shorter memory are padded with zeros. ``depth``: length of the velocity ring buffer.
-    Both: ``newest`` (n_h, n_h), the memory force per unit new velocity.
+    Both: ``newest`` (n_h, n_h), the memory force per unit new velocity, and ``dt`` the step [s] the arrays were
+    made for (0.0 for no memory: no step baked in).
     State space in real form, on the interleaved real and imaginary parts ``z.view(float)`` (2 nz,):
     ``output_real`` (n_h, 2 nz) with F = output_real @ z.view(float) = -Re(output z); ``input_real`` (2 nz, n_h)
     the rows of ``input`` (b u); ``history_state`` (n_h, 2 nz) and ``history_input`` (n_h, n_h), the force at the
@@ -82,6 +105,7 @@ class RadiationArrays(NamedTuple):
     coarse: np.ndarray
     stride: int
     depth: int
+    dt: float
     newest: np.ndarray
     output_real: np.ndarray
     input_real: np.ndarray
@@ -92,9 +116,9 @@ class RadiationArrays(NamedTuple):
 
 @dataclass(frozen=True)
 class RadiationSummary:
-    """What a radiation model kept: states or memory steps, and the dropped couplings."""
+    """What a radiation model kept: its kind, states or memory steps, and the dropped couplings."""
 
-    method: str
+    kind: RadiationKind
     states: int = 0
     entries: int = 0
     dropped_entries: tuple[str, ...] = ()
@@ -105,11 +129,9 @@ class RadiationSummary:
     fine_memory: float = 0.0
 
     def __str__(self) -> str:
-        if self.method == "none":
+        if self.kind == RadiationKind.NONE:
             return "no radiation memory"
-        if self.method == "frequency":
-            return "frequency domain: A(omega) and B(omega) of the database (no memory model)"
-        if self.method == "state_space":
+        if self.kind == RadiationKind.STATE_SPACE:
             return f"state space, {self.states} complex modal states, fastest pole at {self.max_pole:.4g} rad/s"
         dropped = f"; dropped {len(self.dropped_entries)} couplings below the threshold" if self.dropped_entries else ""
         return (
@@ -118,10 +140,11 @@ class RadiationSummary:
         )
 
 
-def _empty(n_h: int, kind: RadiationKind, newest: np.ndarray) -> dict:
+def _empty(n_h: int, kind: RadiationKind, newest: np.ndarray, dt: float = 0.0) -> dict:
     c0 = np.zeros((0, n_h), dtype=complex)
     return {
         "kind": int(kind),
+        "dt": float(dt),
         "poles": np.zeros(0, dtype=complex),
         "input": c0,
         "output": np.zeros((n_h, 0), dtype=complex),
@@ -149,7 +172,9 @@ def _empty(n_h: int, kind: RadiationKind, newest: np.ndarray) -> dict:
 
 def no_radiation(n_h: int) -> tuple[RadiationArrays, RadiationSummary]:
     """No memory force (for tests of the mechanics alone)."""
-    return RadiationArrays(**_empty(n_h, RadiationKind.NONE, np.zeros((n_h, n_h)))), RadiationSummary("none")
+    return RadiationArrays(**_empty(n_h, RadiationKind.NONE, np.zeros((n_h, n_h)))), RadiationSummary(
+        RadiationKind.NONE
+    )
 
 
 def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationArrays, RadiationSummary]:
@@ -160,7 +185,7 @@ def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationAr
     phi1, phi2, _ = phi_functions(lam * dt)
     hold1 = (dt * phi2)[:, None] * inp
     hold0 = (dt * (phi1 - phi2))[:, None] * inp
-    arrays = _empty(n_h, RadiationKind.STATE_SPACE, -np.real(output @ hold1))
+    arrays = _empty(n_h, RadiationKind.STATE_SPACE, -np.real(output @ hold1), dt)
     arrays.update(
         poles=lam.astype(complex),
         input=np.ascontiguousarray(inp, dtype=complex),
@@ -175,7 +200,9 @@ def from_state_space(model: RadiationStateSpace, dt: float) -> tuple[RadiationAr
         hold_real=np.ascontiguousarray(np.hstack([complex_columns(hold0.T).T, complex_columns(hold1.T).T])),
     )
     max_pole = float(np.max(np.abs(lam))) if lam.size else 0.0
-    return RadiationArrays(**arrays), RadiationSummary("state_space", states=int(lam.size), max_pole=max_pole)
+    return RadiationArrays(**arrays), RadiationSummary(
+        RadiationKind.STATE_SPACE, states=int(lam.size), max_pole=max_pole
+    )
 
 
 def from_impulse_response(
@@ -252,7 +279,7 @@ def from_impulse_response(
         coarse_values.append(coarse.reshape(-1))
         f0 += fine.size
         c0 += coarse.size
-    arrays = _empty(n_h, RadiationKind.CONVOLUTION, newest)
+    arrays = _empty(n_h, RadiationKind.CONVOLUTION, newest, dt)
     ints = {k: np.asarray(v, dtype=np.int64) for k, v in (
         ("row", rows), ("col", col_ptr), ("fine_start", fine_start), ("fine_length", fine_length),
         ("coarse_start", coarse_start), ("coarse_length", coarse_length),
@@ -265,7 +292,7 @@ def from_impulse_response(
         depth=longest + 1,
     )
     summary = RadiationSummary(
-        "convolution",
+        RadiationKind.CONVOLUTION,
         entries=len(rows),
         dropped_entries=tuple(dropped),
         memory=longest * dt,

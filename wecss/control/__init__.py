@@ -2,6 +2,7 @@
 measurement it gets), the registry of controllers by name (entry-point group ``wecss.controllers``), and the
 attachment of a controller to a compiled scene."""
 
+from ._attach import ControlledScene as ControlledScene
 from ._attach import attach_controller as attach_controller
 from ._attach import compile_scene as compile_scene
 from ._attach import control_context as control_context

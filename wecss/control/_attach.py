@@ -1,19 +1,37 @@
-"""A scene compiled with its controller: the plant compiled once (``wecss.compiled.compile_plant``), the controller
-set up with a context that offers the plant's linear model, and its linear gains, if it has any, folded into the
-equations of motion."""
+"""A scene compiled with its controller (:class:`ControlledScene`): the plant compiled once
+(``wecss.compiled.compile_plant``), the controller set up once with a context that offers the plant's linear
+model, and its linear gains, if it has any, folded into the equations of motion."""
 
 from __future__ import annotations
 
 import dataclasses
 import functools
 
-import numpy as np
-
 from ..compiled import CompiledScene, compile_plant, with_linear_gains
 from ..linear import LinearModel, linearize
 from ..scene import Scene, SceneError
 from ._protocol import ControlContext, Controller
 from ._registry import available, check_controller, create
+
+
+@dataclasses.dataclass(frozen=True, eq=False, kw_only=True)
+class ControlledScene(CompiledScene):
+    """A :class:`~wecss.compiled.CompiledScene` with its controller attached: what a runner runs.
+
+    Made by :func:`compile_scene` or :func:`attach_controller`. The plant carries the controller's linear gains
+    where it has them (``linear_controller``); the controller was set up once, with ``control_context``; the
+    runs call its ``reset()`` at their start.
+
+    Attributes
+    ----------
+    controller : Controller
+        The controller, set up with ``control_context``.
+    control_context : ControlContext
+        What the controller was told (PTOs, limits, periods, the sea state, the open plant's linear model).
+    """
+
+    controller: Controller
+    control_context: ControlContext
 
 
 def control_context(compiled: CompiledScene) -> ControlContext:
@@ -55,20 +73,24 @@ def _scene_controller(scene: Scene) -> Controller:
         raise SceneError(f"controller {choice.name!r} with parameters {dict(choice.parameters)}: {err}") from None
 
 
-def attach_controller(compiled: CompiledScene, controller: Controller) -> CompiledScene:
-    """``compiled`` (a plant from ``compile_plant``) with ``controller`` set up and its linear gains folded in.
+def attach_controller(compiled: CompiledScene, controller: Controller | None = None) -> ControlledScene:
+    """``compiled`` (a plant from ``compile_plant``) with ``controller`` (default: the scene's own) set up (once) and
+    its linear gains folded in.
 
     Raises
     ------
     SceneError
-        If the controller rejects the context, or its gains, or the scene's solver cannot run it (the frequency
-        domain needs linear gains; controllers that need the state, a preview or the elevation need a time
-        stepping run).
+        If the controller rejects the context, or its gains, or the scene's runner cannot run it (the frequency
+        domain and the reference solver need linear gains; a preview horizon must be whole control periods).
     TypeError
         If ``controller`` is not a :class:`Controller`.
+    ValueError
+        If ``compiled`` has a controller already.
     """
-    if compiled.controller is not None:
+    if isinstance(compiled, ControlledScene):
         raise ValueError("this compiled scene has a controller already; attach to the plant from compile_plant")
+    if controller is None:
+        controller = _scene_controller(compiled.scene)
     check_controller(controller)
     context = control_context(compiled)
     name = type(controller).__name__
@@ -77,16 +99,15 @@ def attach_controller(compiled: CompiledScene, controller: Controller) -> Compil
         gains = controller.linear_gains()
     except (TypeError, ValueError) as err:
         raise SceneError(f"controller {name}: {err}") from None
-    method = compiled.scene.solver.method
-    if method == "frequency" and gains is None:
+    runner = compiled.scene.runner
+    if gains is None and not runner.capabilities.sampled_controllers:
         raise SceneError(
-            f"solver.method 'frequency' needs a controller with linear gains (such as 'damping'); {name} has none: "
-            "use 'linear' or a time-domain solver"
+            f"solver.method {runner.name!r} needs a controller with linear gains (such as 'damping'); {name} has "
+            "none: use 'linear' or a time-domain solver such as 'beeman'"
         )
     if gains is not None:
         try:
-            damping, stiffness = (np.broadcast_to(np.asarray(g, dtype=float), (context.n_pto,)) for g in gains)
-            compiled = with_linear_gains(compiled, damping, stiffness)
+            compiled = with_linear_gains(compiled, *gains)
         except ValueError as err:
             raise SceneError(f"controller {name}: linear_gains() gave {gains!r}: {err}") from None
     horizon = controller.preview_horizon
@@ -97,10 +118,11 @@ def attach_controller(compiled: CompiledScene, controller: Controller) -> Compil
                 f"controller {name}: preview_horizon {horizon:.6g} s must be a whole number (>= 1) of control "
                 f"periods ({context.control_period:.6g} s)"
             )
-    return dataclasses.replace(compiled, controller=controller, control_context=context)
+    fields = {f.name: getattr(compiled, f.name) for f in dataclasses.fields(CompiledScene)}
+    return ControlledScene(**fields, controller=controller, control_context=context)
 
 
-def compile_scene(scene: Scene, controller: Controller | None = None) -> CompiledScene:
+def compile_scene(scene: Scene, controller: Controller | None = None) -> ControlledScene:
     """Compile ``scene`` with its controller (or ``controller``, an instance, instead of the scene's).
 
     The controller is created first (so that bad parameters fail before any work), then the plant is compiled,

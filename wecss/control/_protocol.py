@@ -141,9 +141,10 @@ class Measurement:
 class Controller(ABC):
     """A PTO controller: one force (or torque) per PTO, positive extending the stroke.
 
-    The simulators call :meth:`setup` once per run and :meth:`compute` once per control period, holding the force
-    over the period. A controller declares what it needs beyond the PTO strokes and rates with class (or instance)
-    attributes, and a run that cannot give it refuses before it starts:
+    :meth:`setup` is called once, when the controller is attached to a compiled scene
+    (``wecss.control.compile_scene``); every run then calls :meth:`reset` at its start and :meth:`compute` once per
+    control period, holding the force over the period. A controller declares what it needs beyond the PTO strokes
+    and rates with class (or instance) attributes, and a run that cannot give it refuses before it starts:
 
     - ``needs_state`` (bool): the full state in every :class:`Measurement`;
     - ``preview_horizon`` (float or None): an excitation preview over this many seconds (a whole number of
@@ -161,7 +162,14 @@ class Controller(ABC):
 
     @abstractmethod
     def setup(self, context: ControlContext) -> None:
-        """Called once before a run (see :class:`ControlContext`); a controller with memory starts afresh."""
+        """Called once when the controller is attached to a compiled scene (see :class:`ControlContext`): build
+        what depends on the device and the sea state here (gains, models, solvers)."""
+
+    def reset(self) -> None:
+        """Called at the start of every run, after :meth:`setup`: a controller with memory (filters, plans,
+        warm starts) starts afresh here, so that every run of the same scene gives the same result. Default:
+        nothing (a controller without memory)."""
+        return None
 
     @abstractmethod
     def compute(self, t: float, measurement: Measurement) -> np.ndarray:

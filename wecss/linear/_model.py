@@ -38,6 +38,7 @@ from scipy.linalg import expm
 
 from ..compiled import (
     CompiledScene,
+    RadiationKind,
     interpolate_matrices,
     kinematics,
     linear_damping,
@@ -420,10 +421,9 @@ def exact_step(a: np.ndarray, b: np.ndarray, dt: float) -> tuple[np.ndarray, np.
 def _radiation_model(compiled: CompiledScene) -> RadiationStateSpace | None:
     """The radiation states the scene's simulation uses (its compiled fit), none for no memory, or None for a
     convolution."""
-    method = compiled.radiation_summary.method
     if compiled.radiation_fit is not None:
         return compiled.radiation_fit.model.real_modal()
-    if method == "none":
+    if compiled.radiation_summary.kind == RadiationKind.NONE:
         n_h = len(compiled.hydro.dofs)
         empty = (np.zeros((0, 0)), np.zeros((0, n_h)), np.zeros((n_h, 0)))
         return RadiationStateSpace(*empty, tuple(compiled.hydro.dofs), "none")
@@ -476,10 +476,11 @@ def linearize(
         raise TypeError(
             f"linearize takes a CompiledScene (wecss.sim.compile_scene(scene)); got {type(compiled).__name__}"
         )
-    if radiation is not None and compiled.radiation_summary.method not in ("state_space", "none"):
+    kind = compiled.radiation_summary.kind
+    if radiation is not None and kind == RadiationKind.CONVOLUTION:
         raise ValueError(
             "compile the scene with radiation.method = 'state_space' to linearise it with radiation states (its "
-            f"A_inf correction must belong to the radiation states used); it has {compiled.radiation_summary.method!r}"
+            f"A_inf correction must belong to the radiation states used); it has {kind.method!r}"
         )
     key = _cache_key(compiled) if cache and radiation is None else None
     if key is not None and key in _CACHE:

@@ -30,18 +30,23 @@ import math
 import re
 import tomllib
 from dataclasses import asdict, dataclass, field, fields
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
+from ..outputs import DEFAULT_GROUPS, GROUP_NAMES
+from ._errors import SceneError
 from ._parameters import Parameters
+from ._runners import RADIATION_METHODS, Runner, runner
 
 SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm")
-SOLVER_METHODS = ("beeman", "rk4", "reference", "linear", "frequency")
 LINEAR_HOLDS = ("foh", "zoh")
 ADDED_MASS_TREATMENTS = ("implicit", "explicit")
-RADIATION_METHODS = ("convolution", "state_space", "none")
-OUTPUT_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses", "loads")
-DEFAULT_OUTPUTS = ("motion", "pto", "excitation", "elevation", "poses")
+EXPLICIT_RUNNER = "beeman-explicit"
+"""The runner of the M4 paper's explicit added mass; ``solver.added_mass = "explicit"`` with ``method = "beeman"``
+is read as this method."""
+OUTPUT_GROUPS = GROUP_NAMES
+DEFAULT_OUTPUTS = DEFAULT_GROUPS
 
 
 MAX_STEPS: float = 1e9
@@ -54,10 +59,6 @@ are views of the loop's arrays); the radiation and loads groups take more."""
 
 MAX_SAVED_BYTES: float = 8e9
 """Most memory the saved time series of a scene may take (estimated; this machine class has 24 GiB)."""
-
-
-class SceneError(ValueError):
-    """A scene is malformed; the message says which field, what was received and what is accepted."""
 
 
 _RELATIVE = re.compile(r"^\s*(?:([0-9.eE+-]+)\s*\*?\s*)?(Tp|T)\s*(?:/\s*([0-9.eE+-]+))?\s*$")
@@ -217,12 +218,12 @@ class SeaState:
         if self.ramp_s >= duration:
             raise SceneError(f"sea.ramp ({self.ramp!r}) must be shorter than sea.duration ({self.duration!r})")
 
-    @property
+    @cached_property
     def duration_s(self) -> float:
-        """Duration [s]."""
+        """Duration [s] (read once from ``duration``)."""
         return resolve_time(self.duration, self.period, "sea.duration")
 
-    @property
+    @cached_property
     def ramp_s(self) -> float:
         """Ramp length [s] (0: none)."""
         return 0.0 if _is_zero(self.ramp) else resolve_time(self.ramp, self.period, "sea.ramp")
@@ -262,12 +263,14 @@ class Solver:
 
     Attributes
     ----------
-    method : {"beeman", "rk4", "reference", "linear", "frequency"}
-        The nonlinear MFM equations by the Beeman predictor-corrector (paper Eq. 52), classic RK4 (state-space
-        radiation only) or scipy's DOP853 at tight tolerance (verification; state-space radiation only); or the
-        equations linearised about the static equilibrium: "linear", the linear state-space model stepped exactly
-        (state-space radiation only; ``wecss.linear``), or "frequency", the exact frequency-domain steady state
-        from the database's A(omega) and B(omega) (no ramp, no transient; controllers with linear gains only).
+    method : str
+        A registered runner (``wecss.scene.available_runners()``). The built-ins: the nonlinear MFM equations by
+        the Beeman predictor-corrector (paper Eq. 52, "beeman"), the same with the M4 paper's explicit added mass
+        ("beeman-explicit", see ``added_mass``), classic RK4 ("rk4", state-space radiation only) or scipy's DOP853
+        at tight tolerance ("reference": verification; state-space radiation only); or the equations linearised
+        about the static equilibrium: "linear", the linear state-space model stepped exactly (state-space
+        radiation only; ``wecss.linear``), or "frequency", the exact frequency-domain steady state from the
+        database's A(omega) and B(omega) (no ramp, no transient; controllers with linear gains only).
     dt : float or str
         Step [s] or relative ("Tp/200").
     corrector_tol : float
@@ -284,9 +287,10 @@ class Solver:
     hold : {"foh", "zoh"} or None
         "linear" only: the excitation taken linear in time over a step (first-order hold, second order; the
         default) or held (zero-order hold, first order).
-    added_mass : {"implicit", "explicit"}
-        "beeman" only. "implicit" (default): the infinite-frequency added mass in the mass matrix, B' (M + A_inf) B,
-        no iteration for it. "explicit": the M4 paper's own method (its section 5.2), a replication option: the
+    added_mass : {"implicit", "explicit"} or None
+        "beeman" only. "implicit" (the default, None): the infinite-frequency added mass in the mass matrix,
+        B' (M + A_inf) B, no iteration for it. "explicit" (the same as ``method = "beeman-explicit"``, which the
+        scene then names): the M4 paper's own method (its section 5.2), a replication option: the
         rigid mass alone on the left, the added-mass force of the last accelerations on the right, iterated with
         the corrector until the accelerations change by less than ``corrector_tol`` (the paper: 0.01), with no
         implicit fallback. Slower, and it converges only where the added mass is smaller than the rigid mass in
@@ -301,20 +305,28 @@ class Solver:
     translation_bound: float | None = None
     reference_rtol: float = 1e-10
     hold: str | None = None
-    added_mass: str = "implicit"
+    added_mass: str | None = None
 
     def __post_init__(self) -> None:
-        _choice("solver.method", self.method, SOLVER_METHODS)
-        _choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
-        if self.added_mass == "explicit" and self.method != "beeman":
-            raise SceneError(
-                f"solver.added_mass 'explicit' (the M4 paper's iterated added mass) needs solver.method 'beeman'; "
-                f"got method {self.method!r}"
-            )
+        _types("solver", {"method": (self.method, str)})
+        if self.added_mass is not None:
+            _choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
+        if self.added_mass == "explicit" or self.method == EXPLICIT_RUNNER:
+            if self.method not in ("beeman", EXPLICIT_RUNNER):
+                raise SceneError(
+                    f"solver.added_mass 'explicit' (the M4 paper's iterated added mass) needs solver.method 'beeman' "
+                    f"(or {EXPLICIT_RUNNER!r}); got method {self.method!r}"
+                )
+            if self.added_mass == "implicit":
+                raise SceneError(
+                    f"solver.method {EXPLICIT_RUNNER!r} is the explicit added mass; solver.added_mass 'implicit' "
+                    "contradicts it (leave added_mass out, or use method 'beeman')"
+                )
+            object.__setattr__(self, "method", EXPLICIT_RUNNER)  # one name for the runner
+            object.__setattr__(self, "added_mass", "explicit")
+        runner(self.method)  # a registered runner (SceneError listing them otherwise)
         if self.hold is not None:
             _choice("solver.hold", self.hold, LINEAR_HOLDS)
-            if self.method != "linear":
-                raise SceneError(f"solver.hold applies to solver.method 'linear' only; got method {self.method!r}")
         if not 0 < self.corrector_tol < 1:
             raise SceneError(f"solver.corrector_tol must lie in (0, 1); got {self.corrector_tol!r}")
         if not (isinstance(self.max_corrector_iterations, int) and self.max_corrector_iterations >= 1):
@@ -456,17 +468,12 @@ class Scene:
             raise SceneError(f"solver.dt ({dt:.4g} s) must be shorter than sea.duration ({self.sea.duration_s:.4g} s)")
         self._check_size()
         self.control_steps  # noqa: B018 (validates controller.dt)
-        if self.solver.method in ("rk4", "reference") and self.radiation.method == "convolution":
-            raise SceneError(
-                f"solver.method {self.solver.method!r} needs radiation.method 'state_space' or 'none': with a "
-                "convolution the memory at the intermediate stages is not defined (it would drop the scheme to first "
-                "order); use 'beeman' for convolutions"
-            )
-        if self.solver.method == "linear" and self.radiation.method != "state_space":
-            raise SceneError(
-                "solver.method 'linear' needs radiation.method 'state_space' (the linear model carries the radiation "
-                f"memory as states); got {self.radiation.method!r}"
-            )
+        self.runner.check(self)
+
+    @property
+    def runner(self) -> Runner:
+        """The runner of ``solver.method`` (``wecss.scene.runner``)."""
+        return runner(self.solver.method)
 
     def _check_size(self) -> None:
         """Refuse runs that keep fewer than two saved steps or a statistics window of fewer than two steps, and runs
@@ -500,17 +507,17 @@ class Scene:
                 f"step; at most {MAX_SAVED_BYTES / 1e9:.0f} GB): raise outputs.every or set outputs.statistics_only"
             )
 
-    @property
+    @cached_property
     def dt(self) -> float:
-        """Time step [s]."""
+        """Time step [s] (read once from ``solver.dt``)."""
         return resolve_time(self.solver.dt, self.sea.period, "solver.dt")
 
-    @property
+    @cached_property
     def n_steps(self) -> int:
         """Number of steps (duration / dt, rounded to the nearest integer)."""
         return max(1, round(self.sea.duration_s / self.dt))
 
-    @property
+    @cached_property
     def control_steps(self) -> int:
         """Solver steps per control period (1 without ``controller.dt``)."""
         if self.controller.dt is None:

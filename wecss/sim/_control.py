@@ -1,6 +1,6 @@
-"""The controller call, written once for every simulator: a fresh start per run, the measurement a controller
-asked for (PTO strokes and rates always; the state, an excitation preview and the wave elevation at a point when
-declared), and one checked force per call."""
+"""The controller call, written once for every simulator: a fresh start per run (the controller's ``reset``),
+the measurement a controller asked for (PTO strokes and rates always; the state, an excitation preview and the
+wave elevation at a point when declared), and one checked force per call."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..compiled import CompiledScene
-from ..control import Measurement
+from ..control import ControlledScene, Measurement
 from ..waves import evaluate, wavenumber
 
 
@@ -18,17 +18,17 @@ from ..waves import evaluate, wavenumber
 class ControlLoop:
     """The scene's controller during one run (make it with :meth:`start`)."""
 
-    compiled: CompiledScene
+    compiled: ControlledScene
     n_pto: int
     preview_steps: int
     elevation_coefficients: np.ndarray | None
 
     @classmethod
-    def start(cls, compiled: CompiledScene) -> ControlLoop:
-        """Set the scene's controller up afresh for a run (a controller with memory starts from scratch) and
-        prepare what it declared it needs."""
+    def start(cls, compiled: ControlledScene) -> ControlLoop:
+        """Start the scene's controller afresh for a run (its ``reset``: a controller with memory starts from
+        scratch; it was set up once, when attached) and prepare what it declared it needs."""
         controller, context = compiled.controller, compiled.control_context
-        controller.setup(context)
+        controller.reset()
         horizon = controller.preview_horizon
         steps = 0 if horizon is None else round(horizon / context.control_period)
         coefficients = None

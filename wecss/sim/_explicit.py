@@ -1,4 +1,5 @@
-"""The M4 paper's own treatment of the added mass, as a replication option (``solver.added_mass = "explicit"``).
+"""The M4 paper's own treatment of the added mass, as a replication option: the runner ``beeman-explicit``
+(``solver.method = "beeman-explicit"``, or ``solver.added_mass = "explicit"`` with Beeman).
 
 wecss puts the infinite-frequency added mass in the mass matrix, M*_total = B' (M + A_inf) B (DESIGN.md), so a
 step needs no iteration for it. The paper (Lande-Sudall et al., Eq. 47 inserted into F* of Eq. 46, section 5.2 and
@@ -15,23 +16,37 @@ smaller than the rigid mass in every mode), and slowly near one. :func:`iteratio
 equilibrium; a run refuses to start above :data:`MAX_ITERATION_FACTOR`.
 
 (The paper's Eq. 52 as printed is the velocity-Verlet form; its text, its reference (Beeman 1976) and its stated
-O(dt^3) error are Beeman's scheme, which ``wecss.sim._integrators`` implements and this module reuses.)
+O(dt^3) error are Beeman's scheme, which ``wecss.sim._beeman`` implements and this module reuses.)
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
-from ..compiled import Plant, RadiationArrays, accelerations, integrate_configuration, kernel, kinematics
-from ._integrators import (
+from ..compiled import (
+    Plant,
+    RadiationArrays,
+    Workspace,
+    accelerations,
+    integrate_configuration,
+    kernel,
+    kinematics,
+)
+from ..control import ControlledScene
+from ..scene import Capabilities, SceneError
+from ._beeman import shift_history
+from ._fixed_step import FixedStepRunner
+from ._loop import (
     ACCELERATION_FLOOR,
     LoopState,
     LoopStatus,
     StepSettings,
     Store,
-    _out_of_bounds,
-    _passes_stroke_limit,
-    _record,
+    out_of_bounds,
+    passes_stroke_limit,
+    record_step,
 )
 from ._memory import block_history, memory_advance
 
@@ -118,7 +133,7 @@ def beeman_explicit_chunk(
         q1 = integrate_configuration(p, q, h * v + h * h / 6.0 * (4.0 * acc - acc_prev))
         if not np.all(np.isfinite(q1)):
             return LoopStatus.NOT_FINITE, n1
-        if _out_of_bounds(q1, bounded, bound):
+        if out_of_bounds(q1, bounded, bound):
             return LoopStatus.OUT_OF_BOUNDS, n1
         known = v + h / 6.0 * (5.0 * acc - acc_prev)
         # first evaluation: the predicted velocity, and the added-mass force of the last step's accelerations
@@ -151,7 +166,75 @@ def beeman_explicit_chunk(
         pto_now[0] = x1
         pto_now[1] = xd1
         pto_now[2] = f1
-        if _passes_stroke_limit(p, x1):
+        if passes_stroke_limit(p, x1):
             return LoopStatus.STROKE_LIMIT, n1
-        _record(out, n1, p, q, v, acc, x1, xd1, f1, rad, excitation[k + 1])
+        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, excitation[k + 1]))
     return LoopStatus.OK, step0 + n_steps
+
+
+class BeemanExplicit(FixedStepRunner):
+    """Beeman with the M4 paper's explicit, iterated added mass (see the module docstring): a replication option,
+    slower, and refused where the iteration cannot converge."""
+
+    name = "beeman-explicit"
+    description = "Beeman with the M4 paper's explicit added mass, iterated with the corrector (replication option)"
+    capabilities = Capabilities(streaming=True, order=2)
+
+    def prepare(self, controlled: ControlledScene) -> Any:
+        """The rigid plant, the added mass and the iteration's spectral radius at the equilibrium; refuses a scene
+        where the iteration cannot converge."""
+        factor = iteration_factor(controlled.plant, controlled.q0)
+        if factor > MAX_ITERATION_FACTOR:
+            raise SceneError(
+                f"solver.added_mass 'explicit': the added-mass iteration cannot converge on {controlled.device.name}: "
+                f"its spectral radius (B'MB)^-1 B'A_inf B at the equilibrium is {factor:.3g} (the added mass outweighs "
+                f"the rigid mass in some mode; at most {MAX_ITERATION_FACTOR} is accepted); use solver.added_mass "
+                "'implicit'"
+            )
+        rigid, added = split_added_mass(controlled.plant)
+        return rigid, added, factor
+
+    def advance(
+        self,
+        prepared: Any,
+        p: Plant,
+        r: RadiationArrays,
+        excitation: np.ndarray,
+        command: np.ndarray,
+        step0: int,
+        settings: StepSettings,
+        state: LoopState,
+        out: Store,
+        work: Workspace,
+    ) -> tuple[int, int]:
+        rigid, added, _ = prepared
+        return beeman_explicit_chunk(rigid, added, r, excitation, command, step0, settings, state, out)
+
+    def command_changed(
+        self, p: Plant, r: RadiationArrays, state: LoopState, held: np.ndarray, command: np.ndarray
+    ) -> None:
+        shift_history(p, r, state, held, command)
+
+    def solver_attrs(self, out: Store, prepared: Any, n_steps: int) -> dict[str, Any]:
+        evaluations = out.evaluations
+        return {
+            "solver": "beeman",
+            "evaluations_per_step": float(evaluations[0]) / max(1, n_steps),
+            "max_evaluations_per_step": int(evaluations[1]),
+            "newton_corrector_steps": int(evaluations[2]),
+            "added_mass": "explicit",
+            "added_mass_iteration_factor": prepared[2],
+        }
+
+    def failure(self, status: LoopStatus, controlled: ControlledScene) -> str | None:
+        if status == LoopStatus.CORRECTOR_FAILED:
+            solver = controlled.scene.solver
+            return (
+                "the explicit added-mass iteration (solver.added_mass 'explicit') did not reach solver.corrector_tol "
+                f"in {solver.max_corrector_iterations} iterations (solver.max_corrector_iterations); 'implicit' needs "
+                "no iteration"
+            )
+        return None
+
+
+BEEMAN_EXPLICIT = BeemanExplicit()

@@ -4,17 +4,35 @@ the scene's wave components, evaluated at the scene's time steps and laid out as
 from __future__ import annotations
 
 import time as _time
+from typing import Any
 
 import numpy as np
 
-from ..compiled import CompiledScene
+from ..control import ControlledScene
 from ..linear import linearize, response_amplitudes
+from ..scene import Capabilities, Runner
 from ..waves import evaluate
 from ._load_amplitudes import Spectral
-from ._result import Record, window_statistics
+from ._record import Record, window_statistics
 
 
-def run_frequency_domain(compiled: CompiledScene) -> Record:
+class FrequencyDomain(Runner):
+    """The exact frequency-domain steady state at the scene's steps (see :func:`run_frequency_domain`)."""
+
+    name = "frequency"
+    description = "the exact frequency-domain steady state of the linearised equations, from A(omega) and B(omega)"
+    capabilities = Capabilities(
+        memory_model=False, sampled_controllers=False, free_base=False, transient=False, order=0
+    )
+
+    def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
+        return run_frequency_domain(controlled)
+
+
+FREQUENCY = FrequencyDomain()
+
+
+def run_frequency_domain(compiled: ControlledScene) -> Record:
     """The steady state at every step (no ramp, no transient), from the database's A(omega) and B(omega). PTO
     limits are not applied (the solution is linear); where the device declares them, the result's ``pto_limits``
     attribute says how close the steady state comes to them.
@@ -56,19 +74,25 @@ def run_frequency_domain(compiled: CompiledScene) -> Record:
     velocity_hat = 1j * omega * (model.hydro_jacobian @ amplitudes)  # hydro-DOF velocities (n_h, n_w)
     added, damping = model.hydro.at(omega)
     memory_hat = -np.einsum("wij,jw->iw", damping + 1j * omega[:, None, None] * added, velocity_hat)
+    series = {
+        "q": compiled.q0[None] + xi[keep],
+        "v": rate[keep],
+        "a": signal(-(omega**2) * amplitudes, saved),
+        "x": stroke[keep],
+        "xd": stroke_rate[keep],
+        "f": pto_force[keep],
+        "rad": signal(memory_hat, saved),
+        "exc": signal(coefficients, saved),
+    }
     record = Record(
-        saved,
-        compiled.q0[None] + xi[keep],
-        rate[keep],
-        signal(-(omega**2) * amplitudes, saved),
-        stroke[keep],
-        stroke_rate[keep],
-        pto_force[keep],
-        signal(memory_hat, saved),
-        signal(coefficients, saved),
-        stats,
-        0.0,
-        {"solver": "frequency (exact steady state from A(omega) and B(omega); no ramp, no transient)"},
+        time=saved,
+        series=series,
+        stats=stats,
+        run_time=0.0,
+        solver={
+            "solver": "frequency (exact steady state from A(omega) and B(omega); no ramp, no transient)",
+            "radiation": "frequency domain: A(omega) and B(omega) of the database (no memory model)",
+        },
     )
     record.run_time = _time.perf_counter() - start
     stroke_hat = model.pto_jacobian @ amplitudes

@@ -6,21 +6,45 @@ from __future__ import annotations
 import time as _time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from ..compiled import CompiledScene, end_stop_force
-from ..control import compile_scene
+from ..compiled import end_stop_force
+from ..control import ControlledScene, compile_scene
 from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
-from ..scene import LINEAR_HOLDS, Scene
+from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene, SceneError
 from ._control import ControlLoop
-from ._nonlinear import PtoLimitExceeded
-from ._result import Record, build_result, limit_counts, window_statistics
+from ._dataset import build_result
+from ._errors import PtoLimitExceeded
+from ._record import Record, limit_counts, window_statistics
+
+
+class LinearRunner(Runner):
+    """The linearised model stepped exactly (see :func:`simulate_linear`)."""
+
+    name = "linear"
+    description = "the equations linearised about the equilibrium, stepped exactly in modal coordinates"
+    capabilities = Capabilities(radiation=("state_space",), free_base=False, options=("hold",), order=2)
+
+    def check(self, scene: Scene) -> None:
+        if scene.radiation.method != "state_space":
+            raise SceneError(
+                "solver.method 'linear' needs radiation.method 'state_space' (the linear model carries the radiation "
+                f"memory as states); got {scene.radiation.method!r}"
+            )
+        super().check(scene)
+
+    def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
+        return linear_record(controlled, hold=controlled.scene.solver.linear_hold)
+
+
+LINEAR = LinearRunner()
 
 
 def simulate_linear(
-    compiled: CompiledScene | Scene | str | Path, model: LinearModel | None = None, *, hold: str = "foh"
+    compiled: ControlledScene | Scene | str | Path, model: LinearModel | None = None, *, hold: str = "foh"
 ) -> xr.Dataset:
     """Time-domain run of the linear model on the scene's waves, with the exact discretisation (in modal
     coordinates: see ``wecss.linear.ModalForm``).
@@ -48,6 +72,12 @@ def simulate_linear(
         compiled = Scene.from_toml(compiled)
     if isinstance(compiled, Scene):
         compiled = compile_scene(compiled)
+    return build_result(compiled, linear_record(compiled, model, hold=hold))
+
+
+def linear_record(controlled: ControlledScene, model: LinearModel | None = None, *, hold: str = "foh") -> Record:
+    """The :class:`Record` of a linear run of ``controlled`` (see :func:`simulate_linear`)."""
+    compiled = controlled
     if compiled.device.model.nq != compiled.device.model.nv:
         raise ValueError("the linear simulation needs joint coordinates (no free base)")
     if hold not in LINEAR_HOLDS:
@@ -101,12 +131,18 @@ def simulate_linear(
     }
     if closed and limited:
         solver["solver"] += "; PTO limits as a force held over each step"
-    record = Record(
-        time[keep], (compiled.q0[None] + xi)[keep], rate[keep], acc, stroke[keep], stroke_rate[keep],
-        pto_force[keep], rad, exc[keep], stats, run_time, solver,
-        limit_counts(stroke[1:], wanted[1:], (p.pto_force_limit, p.pto_stroke_limit)),
-    )  # fmt: skip
-    return build_result(compiled, record)
+    series = {
+        "q": (compiled.q0[None] + xi)[keep], "v": rate[keep], "a": acc, "x": stroke[keep], "xd": stroke_rate[keep],
+        "f": pto_force[keep], "rad": rad, "exc": exc[keep],
+    }  # fmt: skip
+    return Record(
+        time=time[keep],
+        series=series,
+        stats=stats,
+        run_time=run_time,
+        solver=solver,
+        limits=limit_counts(stroke[1:], wanted[1:], (p.pto_force_limit, p.pto_stroke_limit)),
+    )
 
 
 def _output_rows(model: LinearModel, with_radiation: bool) -> np.ndarray:
@@ -134,7 +170,7 @@ def _linear_state(model: LinearModel, x: np.ndarray) -> np.ndarray:
     return out
 
 
-def _feedback(compiled: CompiledScene, model: LinearModel, applied: np.ndarray, wanted: np.ndarray) -> Feedback:
+def _feedback(compiled: ControlledScene, model: LinearModel, applied: np.ndarray, wanted: np.ndarray) -> Feedback:
     """The PTO force of a closed linear run held over each step: the controller's (at its control period, or the
     scene's linear gains at every step), saturated at the force limits, plus the end stops. Writes the
     controller's part into ``applied`` and its unsaturated wish into ``wanted`` (per step)."""

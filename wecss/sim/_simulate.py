@@ -1,5 +1,5 @@
-"""``simulate(scene)``: the one entry point for nonlinear, linear and frequency-domain runs, chosen by the scene's
-``solver.method``; every run returns the same Dataset layout."""
+"""``simulate(scene)``: the one entry point for every run: the scene's ``solver.method`` names its runner
+(``wecss.scene.runner``), which runs the compiled scene into a record; every run returns the same Dataset layout."""
 
 from __future__ import annotations
 
@@ -9,14 +9,11 @@ from pathlib import Path
 import xarray as xr
 
 from ..compiled import CompiledScene
-from ..control import Controller, attach_controller, compile_scene
+from ..control import ControlledScene, Controller, attach_controller, compile_scene
 from ..netcdf import storage_encoding, write_netcdf
 from ..scene import Scene
-from ._frequency import run_frequency_domain
-from ._linear import simulate_linear
-from ._nonlinear import run_fixed_step, run_reference
-from ._result import build_result
-from ._stream import STREAMED_GROUPS, ResultStream
+from ._dataset import build_result
+from ._stream import ResultStream, streamable
 
 
 def simulate(
@@ -30,9 +27,9 @@ def simulate(
 ) -> xr.Dataset:
     """Run a scene.
 
-    ``solver.method`` chooses the run: "beeman", "rk4" or "reference" integrate the nonlinear MFM equations;
-    "linear" steps the linearised model exactly (``wecss.linear``); "frequency" evaluates the exact
-    frequency-domain steady state at the scene's time steps.
+    ``solver.method`` names the runner (``wecss.scene.available_runners()``): "beeman", "beeman-explicit", "rk4"
+    or "reference" integrate the nonlinear MFM equations; "linear" steps the linearised model exactly
+    (``wecss.linear``); "frequency" evaluates the exact frequency-domain steady state at the scene's time steps.
 
     Parameters
     ----------
@@ -43,8 +40,8 @@ def simulate(
     progress : bool
         Print a progress bar on standard error (nonlinear runs).
     path : file name, optional
-        Write the result to this netCDF file, the same content as ``wecss.results.save`` writes. The Beeman and
-        RK4 runs stream it: their time series are appended chunk by chunk as the run goes (memory stays flat
+        Write the result to this netCDF file, the same content as ``wecss.results.save`` writes. The fixed-step
+        runs (Beeman, RK4) stream it: their time series are appended chunk by chunk as the run goes (memory stays flat
         whatever the number of saved steps; the file ``NAME.partial.nc`` is readable after every chunk, its
         ``run_status`` attribute says how far it got, and it stays there when the run fails or is interrupted;
         the complete file is renamed to ``path``). The other runs, and runs with the ``loads`` output group (it
@@ -76,48 +73,31 @@ def simulate(
     storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuses bad options before the run
     if isinstance(scene, str | Path):
         scene = Scene.from_toml(scene)
-    if isinstance(scene, CompiledScene):
-        compiled = scene if controller is None else attach_controller(scene, controller)
+    if isinstance(scene, ControlledScene):
+        if controller is not None:
+            raise ValueError("this compiled scene has a controller already; give the plant (compile_plant) or a scene")
+        controlled = scene
+    elif isinstance(scene, CompiledScene):
+        controlled = attach_controller(scene, controller)
     elif isinstance(scene, Scene):
-        compiled = compile_scene(scene, controller)
+        controlled = compile_scene(scene, controller)
     else:
         raise TypeError(f"simulate takes a Scene, a CompiledScene or a scene file; got {type(scene).__name__}")
-    method = compiled.scene.solver.method
-    if path is not None and streamed(compiled):
-        return _streamed(compiled, progress, path, compress, float32)
-    if method == "linear":
-        ds = simulate_linear(compiled, hold=compiled.scene.solver.linear_hold)
-    else:
-        if method == "frequency":
-            record = run_frequency_domain(compiled)
-        elif method == "reference":
-            record = run_reference(compiled, progress)
-        else:
-            record = run_fixed_step(compiled, progress)
-        ds = build_result(compiled, record)
+    runner = controlled.scene.runner
+    if path is not None and streamable(controlled):
+        return _streamed(controlled, progress, path, compress, float32)
+    ds = build_result(controlled, runner.run(controlled, progress=progress))
     if path is not None:
         write_netcdf(ds, path, compress=compress, float32=float32)
     return ds
 
 
-def streamed(compiled: CompiledScene) -> bool:
-    """Whether ``simulate(..., path=...)`` streams this scene's result to the file as it runs: Beeman and RK4 runs
-    that save time series of the groups ``STREAMED_GROUPS`` (statistics-only runs hold nothing per step and
-    are written at the end)."""
-    scene = compiled.scene
-    return (
-        scene.solver.method in ("beeman", "rk4")
-        and not scene.outputs.statistics_only
-        and set(scene.outputs.variables) <= set(STREAMED_GROUPS)
-    )
-
-
 def _streamed(
-    compiled: CompiledScene, progress: bool, path: str | os.PathLike[str], compress: int, float32: bool
+    controlled: ControlledScene, progress: bool, path: str | os.PathLike[str], compress: int, float32: bool
 ) -> xr.Dataset:
-    stream = ResultStream(compiled, path, compress=compress, float32=float32)
+    stream = ResultStream(controlled, path, compress=compress, float32=float32)
     try:
-        record = run_fixed_step(compiled, progress, stream)
+        record = controlled.scene.runner.run(controlled, progress=progress, stream=stream)
     except BaseException as err:
         stream.stop(err)
         raise

@@ -18,25 +18,37 @@ import numpy as np
 import xarray as xr
 
 from ..attributes import apply_attrs
-from ..compiled import CompiledScene, poses
+from ..compiled import poses
+from ..control import ControlledScene
 from ..netcdf import AppendingWriter
+from ..outputs import STREAMED_GROUPS
+from ._dataset import series_variables, statistics_dataset
 from ._guards import MotionSummary
-from ._result import Record, elevation_series, series_variables, statistics_dataset
+from ._quantities import elevation_series
+from ._record import Record
 
 STREAM_STEPS: int = 10_000
 """Steps between two parts written to the file (at most this many are lost to a crash; the buffers hold about
 this many saved rows: ~10 MB for m4-134 with the default outputs)."""
 
-STREAMED_GROUPS = ("motion", "pto", "excitation", "radiation", "elevation", "poses")
-"""The output groups a streamed run writes part by part (``loads`` needs the whole record: such runs are built
-whole, then written)."""
+
+def streamable(controlled: ControlledScene) -> bool:
+    """Whether ``simulate(..., path=...)`` streams this scene's result to the file as it runs: a runner that can
+    (``Capabilities.streaming``) saving time series of streamed groups only (``wecss.outputs.Group.streamed``;
+    statistics-only runs hold nothing per step and are written at the end)."""
+    scene = controlled.scene
+    return (
+        scene.runner.capabilities.streaming
+        and not scene.outputs.statistics_only
+        and set(scene.outputs.variables) <= set(STREAMED_GROUPS)
+    )
 
 
 class ResultStream:
     """Where a fixed-step run sends its saved rows when the result goes to a file as it runs."""
 
     def __init__(
-        self, compiled: CompiledScene, path: str | os.PathLike[str], *, compress: int = 0, float32: bool = False
+        self, compiled: ControlledScene, path: str | os.PathLike[str], *, compress: int = 0, float32: bool = False
     ) -> None:
         self.compiled = compiled
         outputs = compiled.scene.outputs
@@ -63,8 +75,8 @@ class ResultStream:
         eta = None if self.elevation is None else self.elevation[rows]
         data, coords, known = series_variables(self.compiled, part, eta)
         if known is None:  # the notes read the poses; computed here when no output has them
-            known = poses(self.compiled.plant, np.ascontiguousarray(part.q))
-        self.motion.add(part.q, known)
+            known = poses(self.compiled.plant, np.ascontiguousarray(part["q"]))
+        self.motion.add(part["q"], known)
         ds = apply_attrs(xr.Dataset(data, coords=coords))
         if self.writer.rows == 0:
             ds.attrs["scene"] = self.compiled.scene.to_json()  # a partial file is a result file (``wecss info``)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import wecss.sim._nonlinear as nonlinear
+import wecss.sim._fixed_step as fixed_step
 from tests.sim.scenes import compiled_with_state_space, scene
 from wecss.sim import simulate
 
@@ -16,11 +16,11 @@ def test_excitation_table_and_per_chunk_sums_give_the_same_run(method, monkeypat
     compiled = compiled_with_state_space(
         scene("m4-111", solver={"method": method}, sea={"duration": 12.0}, radiation={"method": "none"})
     )
-    table = nonlinear._Excitation(compiled, 2 if method == "rk4" else 1)
+    table = fixed_step._Excitation(compiled, 2 if method == "rk4" else 1)
     assert table.table is not None  # (the test compares the two paths: the table must be in use)
     with_table = simulate(compiled)
-    monkeypatch.setattr(nonlinear, "EXCITATION_TABLE_MAX", 0)
-    assert nonlinear._Excitation(compiled, 1).table is None
+    monkeypatch.setattr(fixed_step, "EXCITATION_TABLE_MAX", 0)
+    assert fixed_step._Excitation(compiled, 1).table is None
     per_chunk = simulate(compiled)
     scale = np.max(np.abs(per_chunk.angle.values))
     assert scale > 1e-3  # the sea moves the device
