@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wecss.control import ControlContext, Controller, Measurement
+from wecss.control import ControlContext, Controller, Measurement, pto_control_force
 
 
 class LinearDamping(Controller):
@@ -34,7 +34,7 @@ class LinearDamping(Controller):
 
     def setup(self, context: ControlContext) -> None:
         n_pto = context.n_pto
-        damping = _gains("default_damping", context.default_damping) if self._damping is None else self._damping
+        damping = np.asarray(context.default_damping, dtype=float) if self._damping is None else self._damping
         for label, values in (("damping", damping), ("stiffness", self._stiffness)):
             if values.size not in (1, n_pto):
                 raise ValueError(f"{label} has {values.size} values; the device has {n_pto} PTOs (give 1 or {n_pto})")
@@ -47,7 +47,7 @@ class LinearDamping(Controller):
         return self.c.copy(), self.k.copy()
 
     def compute(self, t: float, measurement: Measurement) -> np.ndarray:
-        return -self.c * measurement.velocity - self.k * measurement.displacement
+        return pto_control_force(0.0, self.c, self.k, measurement.displacement, measurement.velocity)
 
 
 def _gains(label: str, values: float | list[float] | tuple[float, ...]) -> np.ndarray:

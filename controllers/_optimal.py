@@ -5,7 +5,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from wecss.control import ControlContext, Controller, Measurement, optimal_damping, optimal_spring_damper
+from wecss.control import (
+    ControlContext,
+    Controller,
+    Measurement,
+    optimal_damping,
+    optimal_spring_damper,
+    pto_control_force,
+)
 
 
 def _waves(context: ControlContext, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -25,7 +32,7 @@ class _TunedLinear(Controller):
         return self.damping.copy(), self.stiffness.copy()
 
     def compute(self, t: float, measurement: Measurement) -> np.ndarray:
-        return -self.damping * measurement.velocity - self.stiffness * measurement.displacement
+        return pto_control_force(0.0, self.damping, self.stiffness, measurement.displacement, measurement.velocity)
 
 
 class OptimalDamping(_TunedLinear):

@@ -35,7 +35,9 @@ def main() -> None:
         parser.error(f"unknown databases {unknown}; choose from {', '.join(DATABASES)}")
     for name in args.names or DATABASES:
         hydro = load_device(name).coupling().hydro
-        settings, band = fit_request(Scene(), hydro)  # what a default scene with state-space radiation asks for
+        settings, band = fit_request(
+            Scene().radiation, hydro
+        )  # what a default scene with state-space radiation asks for
         key = fit_cache_key(hydro, settings, band)
         shipped = SHIPPED_FITS_DIR / f"{key}.nc"
         if args.quick:

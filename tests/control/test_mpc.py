@@ -91,8 +91,8 @@ class _RecordingPath:
 
 
 class _RecordingMPC(MPC):
-    def setup(self, context):  # type: ignore[no-untyped-def]
-        super().setup(context)
+    def reset(self):  # type: ignore[no-untyped-def]
+        super().reset()
         self.path = _RecordingPath(self.path)  # type: ignore[arg-type]
 
 
@@ -142,8 +142,8 @@ class _FailingPath:
 
 
 class _FailingMPC(MPC):
-    def setup(self, context):  # type: ignore[no-untyped-def]
-        super().setup(context)
+    def reset(self):  # type: ignore[no-untyped-def]
+        super().reset()
         self.path = _FailingPath(self.path)  # type: ignore[arg-type]
 
 

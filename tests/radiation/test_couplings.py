@@ -32,7 +32,7 @@ def test_a_pitch_coupling_survives_in_both_radiation_models():
     the convolution and judged by the shipped state-space fit, which the scene's threshold reaches."""
     sc = scene("m4-111", radiation={"method": "state_space"})
     hydro = load_device("m4-111").coupling().hydro
-    settings, _ = fit_request(sc, hydro)
+    settings, _ = fit_request(sc.radiation, hydro)
     assert settings.coupling_threshold == sc.radiation.coupling_threshold == 1e-3
     irf = impulse_response(hydro)
     dofs = list(irf.dofs)

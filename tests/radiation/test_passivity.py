@@ -97,7 +97,7 @@ def test_shipped_fits_are_passive(name: str) -> None:
     from wecss.scene import Scene
 
     hydro = load_device(name).coupling().hydro
-    settings, band = fit_request(Scene(), hydro)
+    settings, band = fit_request(Scene().radiation, hydro)
     cached = load_cached_fit(fit_cache_key(hydro, settings, band))
     assert cached is not None, "no shipped fit for the default settings"
     model = cached[0]

@@ -39,6 +39,9 @@ from ._plant import PtoKind as PtoKind
 from ._plant import build_plant as build_plant
 from ._plant import linear_damping as linear_damping
 from ._plant import mooring_damping_matrix as mooring_damping_matrix
+from ._pto_law import pto_control_force as pto_control_force
+from ._pto_law import pto_gains as pto_gains
+from ._pto_law import saturate as saturate
 from ._radiation import RadiationArrays as RadiationArrays
 from ._radiation import RadiationKind as RadiationKind
 from ._radiation import RadiationSummary as RadiationSummary

@@ -2,6 +2,7 @@
 measurement it gets), the registry of controllers by name (entry-point group ``wecss.controllers``), and the
 attachment of a controller to a compiled scene."""
 
+from ..compiled import pto_control_force as pto_control_force
 from ._attach import ControlledScene as ControlledScene
 from ._attach import attach_controller as attach_controller
 from ._attach import compile_scene as compile_scene

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..compiled import CompiledScene
+from ..compiled import CompiledScene, pto_control_force
 from ..hydro import split_dof
 from ._model import LinearModel, linearize
 
@@ -85,13 +85,10 @@ def linear_inputs(result: xr.Dataset, compiled: CompiledScene, model: LinearMode
         force = _by_kind(result, "pto_torque", "pto_force")
         p = compiled.plant
         folded = model.pto_stiffness
+        # the PTO input is the force less what the model itself applies: the device spring and the folded gains
+        folded_force = pto_control_force(0.0, model.pto_damping, folded, stroke, rate)
         columns += list(
-            (
-                force
-                + (p.pto_spring + folded) * stroke
-                + model.pto_damping * rate
-                + (p.pto_stiffness - folded) * model.pto_stroke
-            ).T
+            (force + p.pto_spring * stroke - folded_force + (p.pto_stiffness - folded) * model.pto_stroke).T
         )
     labels = [*(f"excitation__{d}" for d in dofs), *(f"force__{n}" for n in ptos)]
     return xr.DataArray(

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from ..compiled import pto_control_force
 from ..control import ControlledScene
 from ..linear import linearize, response_amplitudes
 from ..scene import Capabilities, Runner
@@ -68,7 +69,7 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
     rate = signal(1j * omega * amplitudes, time)
     stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
     stroke_rate = rate @ model.pto_jacobian.T
-    pto_force = -(p.pto_spring + p.pto_stiffness) * stroke - p.pto_damping * stroke_rate
+    pto_force = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, stroke, stroke_rate) - p.pto_spring * stroke
     stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
     saved = time[keep]
     velocity_hat = 1j * omega * (model.hydro_jacobian @ amplitudes)  # hydro-DOF velocities (n_h, n_w)
@@ -97,13 +98,15 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
     record.run_time = _time.perf_counter() - start
     stroke_hat = model.pto_jacobian @ amplitudes
     rest = model.pto_stroke
-    stiffness = p.pto_spring + p.pto_stiffness
+    c, k, spring = p.pto_damping[:, None], p.pto_stiffness[:, None], p.pto_spring[:, None]
     record.spectral = Spectral(
         omega,
         {"q": compiled.q0, "v": np.zeros(nv), "a": np.zeros(nv), "x": rest, "xd": np.zeros_like(rest),
-         "f": -stiffness * rest, "h": np.zeros(n_h)},
+         "f": pto_control_force(0.0, p.pto_damping, p.pto_stiffness, rest, 0.0) - p.pto_spring * rest,
+         "h": np.zeros(n_h)},
         {"q": amplitudes, "v": 1j * omega * amplitudes, "a": -(omega**2) * amplitudes, "x": stroke_hat,
-         "xd": 1j * omega * stroke_hat, "f": -(stiffness[:, None] + 1j * omega * p.pto_damping[:, None]) * stroke_hat,
+         "xd": 1j * omega * stroke_hat,
+         "f": pto_control_force(0.0, c, k, stroke_hat, 1j * omega * stroke_hat) - spring * stroke_hat,
          "h": memory_hat + coefficients},
     )  # fmt: skip
     limits = (p.pto_force_limit, p.pto_stroke_limit)

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..compiled import end_stop_force
+from ..compiled import end_stop_force, pto_control_force, saturate
 from ..control import ControlledScene, compile_scene
 from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
 from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene, SceneError
@@ -102,7 +102,7 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     if not closed:
         y = open_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation))
         stroke = stroke0[None] + y[:, :nv] @ g.T
-        wanted = -p.pto_damping * (y[:, nv : 2 * nv] @ g.T) - p.pto_stiffness * stroke
+        wanted = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, stroke, y[:, nv : 2 * nv] @ g.T)
         closed = limited and bool(
             np.any(np.abs(wanted) > p.pto_force_limit) or np.any(np.abs(stroke) > p.pto_stroke_limit)
         )
@@ -121,7 +121,8 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     xi, rate = y[:, :nv], y[:, nv : 2 * nv]
     stroke = stroke0[None] + xi @ g.T
     stroke_rate = rate @ g.T
-    pto_force = applied - (p.pto_spring + model.pto_stiffness) * stroke - model.pto_damping * stroke_rate
+    pto_force = pto_control_force(applied, model.pto_damping, model.pto_stiffness, stroke, stroke_rate)
+    pto_force -= p.pto_spring * stroke  # the device spring
     stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
     run_time = _time.perf_counter() - start
     assert model.radiation is not None
@@ -158,10 +159,6 @@ def _output_rows(model: LinearModel, with_radiation: bool) -> np.ndarray:
     return rows
 
 
-def _saturate(force: np.ndarray, limit: np.ndarray) -> np.ndarray:
-    return np.minimum(np.maximum(force, -limit), limit)
-
-
 def _linear_state(model: LinearModel, x: np.ndarray) -> np.ndarray:
     """The measurement's state of a linear run: q0 + xi, xi_dot and the radiation states."""
     nv = model.mass.shape[0]
@@ -192,13 +189,13 @@ def _feedback(compiled: ControlledScene, model: LinearModel, applied: np.ndarray
                 {"x": state()},
             )
         if loop is None:  # the scene's linear gains, taken out of the model, act held and limited
-            wanted[k] = -p.pto_damping * rate - p.pto_stiffness * x
-            applied[k] = _saturate(wanted[k], p.pto_force_limit)
+            wanted[k] = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, x, rate)
+            applied[k] = saturate(wanted[k], p.pto_force_limit)
         else:
             if k % control_steps == 0:  # a control step: the force is held until the next one
                 held = loop.force(float(time[k]), x, rate, lambda: _linear_state(model, state()))
             wanted[k] = held
-            applied[k] = _saturate(held, p.pto_force_limit)
+            applied[k] = saturate(held, p.pto_force_limit)
         return applied[k] + end_stop_force(p, x, rate)
 
     return feedback
