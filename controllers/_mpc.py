@@ -1,5 +1,5 @@
 """Model predictive control that maximises the absorbed energy over a receding horizon, all PTOs of a device in
-one quadratic programme (``wecss.control.PowerQP``), solved every control period by OSQP (directly or through
+one quadratic programme (``wecss.control.mpc.PowerQP``), solved every control period by OSQP (directly or through
 cvxpy)."""
 
 from __future__ import annotations
@@ -9,19 +9,17 @@ from typing import Any
 
 import numpy as np
 
-from wecss.control import (
+from wecss.control import ControlContext, Controller, Measurement
+from wecss.control.design import optimal_damping
+from wecss.control.mpc import (
     ARPredictor,
-    ControlContext,
-    Controller,
     CvxpyPath,
     ExcitationEstimator,
     HorizonModel,
-    Measurement,
     OsqpPath,
     PowerQP,
     StateObserver,
     measured_rms,
-    optimal_damping,
     pto_referred,
 )
 from wecss.linear import LinearModel
@@ -49,7 +47,7 @@ class MPC(Controller):
     period) and applies the first. The objective is the exact absorbed energy of the held forces, less a force
     penalty (``force_penalty``; with ``efficiency`` also a loss model of the power conversion); the force limit is
     hard, the stroke limit soft (a slack, penalised, so the programme stays feasible), the rate limit optional
-    (``wecss.control.PowerQP`` has the formulation). The state comes from a Kalman filter of the PTO strokes and
+    (``wecss.control.mpc.PowerQP`` has the formulation). The state comes from a Kalman filter of the PTO strokes and
     rates; the excitation over the horizon either from the scene itself (``preview = "perfect"``: a benchmark, no
     real controller knows it) or from the excitation estimator and an autoregressive predictor fitted on the sea
     state's spectrum with random phases (``"causal"``: only the sea state's spectrum is known, not the record).

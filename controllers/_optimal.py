@@ -5,14 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from wecss.control import (
-    ControlContext,
-    Controller,
-    Measurement,
-    optimal_damping,
-    optimal_spring_damper,
-    pto_control_force,
-)
+from wecss.control import ControlContext, Controller, Measurement, pto_control_force
+from wecss.control.design import optimal_damping, optimal_spring_damper
 
 
 def _waves(context: ControlContext, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -38,7 +32,7 @@ class _TunedLinear(Controller):
 class OptimalDamping(_TunedLinear):
     """The passive damping per PTO [N s/m or N m s/rad] that maximises the total mean absorbed power in the
     scene's sea state, all PTOs together, from the exact frequency-domain model
-    (:func:`wecss.control.optimal_damping`). No parameters. ``expected_power`` [W] holds the frequency domain's
+    (:func:`wecss.control.design.optimal_damping`). No parameters. ``expected_power`` [W] holds the frequency domain's
     mean power per PTO after :meth:`setup`.
 
     Raises
@@ -55,7 +49,7 @@ class OptimalDamping(_TunedLinear):
 class Reactive(_TunedLinear):
     """The best causal spring-damper per PTO for the scene's sea state: damping c >= 0 [N s/m or N m s/rad] and
     stiffness k of any sign [N/m or N m/rad] (reactive when negative), all PTOs together, from the exact
-    frequency-domain model (:func:`wecss.control.optimal_spring_damper`; the static stiffness stays positive
+    frequency-domain model (:func:`wecss.control.design.optimal_spring_damper`; the static stiffness stays positive
     definite, so the loop is stable).
 
     Parameters

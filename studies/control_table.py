@@ -23,7 +23,8 @@ from pathlib import Path
 import numpy as np
 from _common import ROOT, write_section
 
-from wecss.control import compile_scene, power_bound
+from wecss.control import compile_scene
+from wecss.control.design import power_bound
 from wecss.sim import PtoLimitExceeded, Scene, default_scene_path, simulate
 
 SECTION = "## Controllers compared"

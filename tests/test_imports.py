@@ -30,7 +30,7 @@ def test_the_first_kernel_call_loads_numba_when_it_is_used():
     from wecss.compiled import JIT
 
     loaded = _loaded_after(
-        "import numpy as np\nfrom wecss.compiled import matvec\nout = np.zeros(2)\n"
+        "import numpy as np\nfrom wecss.compiled.kernels import matvec\nout = np.zeros(2)\n"
         "matvec(np.eye(2), np.ones(2), out)\nassert out.tolist() == [1.0, 1.0]"
     )
     assert ("numba" in loaded) == JIT

@@ -7,14 +7,9 @@ import numpy as np
 import pytest
 
 from tests.radiation.analytic import known_system
-from wecss.compiled import (
-    cholesky,
-    cholesky_solve,
-    from_state_space,
-    matvec,
-    matvec_add,
-)
+from wecss.compiled import from_state_space
 from wecss.compiled._linalg import congruence, matvec_t_add
+from wecss.compiled.kernels import cholesky, cholesky_solve, matvec, matvec_add
 from wecss.radiation import RadiationStateSpace
 from wecss.sim._memory import memory_advance, memory_history
 

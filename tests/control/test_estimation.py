@@ -12,7 +12,8 @@ import pytest
 from scipy.linalg import expm
 
 from tests.sim.scenes import HeldDamping
-from wecss.control import ARPredictor, ExcitationEstimator, compile_scene, pto_referred
+from wecss.control import compile_scene
+from wecss.control.mpc import ARPredictor, ExcitationEstimator, pto_referred
 from wecss.linear import HydroResponse, LinearModel
 from wecss.sim import Scene, simulate
 

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import scene
-from wecss.control import compile_scene, mean_power, optimal_damping, optimal_spring_damper, power_bound
+from wecss.control import compile_scene
+from wecss.control.design import gains_power, optimal_damping, optimal_spring_damper, power_bound
 from wecss.linear import HydroResponse, LinearModel
 from wecss.sim import simulate
 
@@ -60,7 +61,7 @@ def test_bad_inputs_name_what_was_received():
     with pytest.raises(ValueError, match="positive and finite"):
         power_bound(model, np.array([-1.0]), np.ones((1, 1)))
     with pytest.raises(ValueError, match="damping: expected 1 or 1 finite values"):
-        mean_power(model, np.array([1.0]), np.ones((1, 1)), np.array([np.nan]))
+        gains_power(model, np.array([1.0]), np.ones((1, 1)), np.array([np.nan]))
     with pytest.raises(ValueError, match="force_limit must be positive"):
         optimal_spring_damper(model, np.array([1.0]), np.ones((1, 1)), force_limit=-1.0)
 
@@ -77,14 +78,14 @@ def test_m4_134_ordering_and_local_optimality(m4_134):
     bound = power_bound(model, w, x)
     reactive = optimal_spring_damper(model, w, x)
     best = optimal_damping(model, w, x)
-    paper = mean_power(model, w, x, 6.0)
+    paper = gains_power(model, w, x, 6.0)
     assert bound.total >= reactive.total >= best.total > paper.total > 0
     assert np.allclose(bound.per_pto.sum(), bound.total)
     for p in range(4):  # every PTO's damping moved alone, either way, loses power
         for factor in (0.8, 1.25):
             c = best.damping.copy()
             c[p] *= factor
-            assert mean_power(model, w, x, c).total < best.total
+            assert gains_power(model, w, x, c).total < best.total
 
 
 def test_frequency_domain_power_matches_the_linear_simulation():

@@ -11,7 +11,8 @@ import pytest
 
 from controllers import MPC
 from tests.sim.scenes import scene
-from wecss.control import CvxpyPath, OsqpPath, Solution, compile_scene
+from wecss.control import compile_scene
+from wecss.control.mpc import CvxpyPath, OsqpPath, Solution
 from wecss.sim import Scene, simulate
 
 FLOAT = Path(__file__).with_name("heaving_float.toml")  # the M4 stern float on a vertical slider

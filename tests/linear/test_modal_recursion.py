@@ -73,7 +73,7 @@ def test_phi_functions_equal_their_integrals(s):
 
     from scipy.integrate import quad
 
-    from wecss.compiled import phi_functions
+    from wecss.compiled.kernels import phi_functions
 
     values = phi_functions(np.array([s]))
     for j, value in zip((1, 2, 3), values, strict=True):

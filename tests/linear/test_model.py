@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import held, scene
-from wecss.compiled import accelerations, integrate_configuration
+from wecss.compiled.kernels import accelerations, integrate_configuration
 from wecss.linear import steady_state
 from wecss.results import mean_power
 from wecss.sim import compile_scene, linearize, simulate_linear

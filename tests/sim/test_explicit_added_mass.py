@@ -8,7 +8,7 @@ import pytest
 
 import wecss.sim._explicit as explicit
 from tests.sim.scenes import scene
-from wecss.compiled import kinematics
+from wecss.compiled.kernels import kinematics
 from wecss.linear import linearize
 from wecss.multibody import body_mass_matrix
 from wecss.sim import SceneError, SimulationDiverged, compile_scene, simulate

@@ -11,7 +11,8 @@ import pytest
 import xarray as xr
 
 from tests.sim.scenes import HeldDamping, scene
-from wecss.compiled import Plant, RadiationArrays, Workspace, configure, integrate_configuration, respond
+from wecss.compiled import Plant, RadiationArrays
+from wecss.compiled.kernels import Workspace, configure, integrate_configuration, respond
 from wecss.scene import Capabilities, SceneError, available_runners, register_runner, unregister_runner
 from wecss.sim import simulate
 from wecss.sim.runners import (

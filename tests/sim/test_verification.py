@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import compiled_with_state_space, scene
-from wecss.compiled import accelerations, poses
+from wecss.compiled.kernels import accelerations, poses
 from wecss.control import ControlContext, Controller, Measurement
 from wecss.linear import steady_state
 from wecss.sim import Scene, SimulationDiverged, compile_scene, simulate

@@ -1,39 +1,14 @@
-"""A scene compiled to flat arrays once (the plant, the radiation memory, the wave components, the controller),
-and the kernels that read them: the MFM equations of motion on arrays, compiled with numba when available."""
+"""A scene compiled to flat arrays once (the plant, the radiation memory, the wave components), without its
+controller (``wecss.control`` attaches it). The kernels that read the arrays are in ``wecss.compiled.kernels``."""
 
 from ._compile import CompiledScene as CompiledScene
 from ._compile import clear_compile_cache as clear_compile_cache
 from ._compile import compile_plant as compile_plant
 from ._compile import fit_request as fit_request
+from ._compile import make_radiation as make_radiation
 from ._compile import make_waves as make_waves
 from ._compile import with_linear_gains as with_linear_gains
 from ._jit import JIT as JIT
-from ._jit import inline_kernel as inline_kernel
-from ._jit import kernel as kernel
-from ._jit import reduction_kernel as reduction_kernel
-from ._jit import step_kernel as step_kernel
-from ._kernels import Workspace as Workspace
-from ._kernels import accelerations as accelerations
-from ._kernels import configuration_rate as configuration_rate
-from ._kernels import configure as configure
-from ._kernels import end_stop_force as end_stop_force
-from ._kernels import hydro_velocity as hydro_velocity
-from ._kernels import hydrostatic_force as hydrostatic_force
-from ._kernels import integrate_configuration as integrate_configuration
-from ._kernels import kinematics as kinematics
-from ._kernels import normalise_quaternions as normalise_quaternions
-from ._kernels import poses as poses
-from ._kernels import pto_strokes as pto_strokes
-from ._kernels import respond as respond
-from ._kernels import workspace as workspace
-from ._kernels import world_jacobian as world_jacobian
-from ._linalg import cholesky as cholesky
-from ._linalg import cholesky_solve as cholesky_solve
-from ._linalg import complex_columns as complex_columns
-from ._linalg import matvec as matvec
-from ._linalg import matvec_add as matvec_add
-from ._linalg import real_part_rows as real_part_rows
-from ._phi import phi_functions as phi_functions
 from ._plant import Plant as Plant
 from ._plant import PtoKind as PtoKind
 from ._plant import build_plant as build_plant

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compiled import JIT, complex_columns, phi_functions, real_part_rows, reduction_kernel
+from ..compiled import JIT
+from ..compiled.kernels import complex_columns, phi_functions, real_part_rows, reduction_kernel
 
 CONDITION_LIMIT: float = 1e8
 """Largest accepted condition number of the eigenvector matrix (beyond it the modal form loses accuracy)."""

@@ -36,15 +36,8 @@ import numpy as np
 import xarray as xr
 from scipy.linalg import expm
 
-from ..compiled import (
-    CompiledScene,
-    RadiationKind,
-    interpolate_matrices,
-    kinematics,
-    linear_damping,
-    pto_strokes,
-    world_jacobian,
-)
+from ..compiled import CompiledScene, RadiationKind, interpolate_matrices, linear_damping
+from ..compiled.kernels import kinematics, pto_strokes, world_jacobian
 from ..multibody import body_mass_matrix
 from ..radiation import RadiationStateSpace
 from ._modal_recursion import ModalForm, ModalSteps

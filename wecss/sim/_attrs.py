@@ -11,7 +11,8 @@ import numpy as np
 
 from .. import __version__
 from ..compiled import JIT
-from ..control import ControlledScene, PowerBound
+from ..control import ControlledScene
+from ..control.design import PowerBound
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, step_notes, wave_notes
 from ._record import Record

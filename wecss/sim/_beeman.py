@@ -18,17 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import (
-    Plant,
-    RadiationArrays,
-    Workspace,
-    accelerations,
-    configure,
-    integrate_configuration,
-    kernel,
-    matvec,
-    respond,
-)
+from ..compiled import Plant, RadiationArrays
+from ..compiled.kernels import Workspace, accelerations, configure, integrate_configuration, kernel, matvec, respond
 from ..control import ControlledScene
 from ..scene import Capabilities
 from ._fixed_step import FixedStepRunner

@@ -25,15 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import (
-    Plant,
-    RadiationArrays,
-    Workspace,
-    accelerations,
-    integrate_configuration,
-    kernel,
-    kinematics,
-)
+from ..compiled import Plant, RadiationArrays
+from ..compiled.kernels import Workspace, accelerations, integrate_configuration, kernel, kinematics
 from ..control import ControlledScene
 from ..scene import Capabilities, SceneError
 from ._beeman import shift_history
@@ -91,7 +84,7 @@ def explicit_accelerations(
 ):
     """Accelerations with the rigid mass on the left and the added-mass force of the accelerations ``guess`` on
     the right (``p``: the rigid plant of :func:`split_added_mass`, ``added`` its A_inf); the other arguments and
-    the returns as ``wecss.compiled.accelerations``."""
+    the returns as ``wecss.compiled.kernels.accelerations``."""
     a, u, x, xd, f, mass = accelerations(p, q, v, hydro_force, newest, command)
     _rot, _pos, b, bdot, _omega = kinematics(p, q, v)
     act = p.active

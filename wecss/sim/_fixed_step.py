@@ -20,7 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import CompiledScene, Plant, RadiationArrays, Workspace, accelerations, workspace
+from ..compiled import CompiledScene, Plant, RadiationArrays
+from ..compiled.kernels import Workspace, accelerations, workspace
 from ..control import ControlledScene
 from ..outputs import CHANNEL_NAMES
 from ..scene import Capabilities, Runner
@@ -204,8 +205,8 @@ def run_fixed_step(
     )
     if n_save:  # the row at step 0: the initial state (no memory force yet)
         first = {"q": q, "v": v, "a": a0, "x": x0, "xd": xd0, "f": f0, "rad": np.zeros(u0.size), "exc": exc0}
-        for name, series, order in zip(CHANNEL_NAMES, out.series, out.columns, strict=True):
-            series[0] = first[name][order]
+        for name, rows, order in zip(CHANNEL_NAMES, out.series, out.columns, strict=True):
+            rows[0] = first[name][order]
         out.save_index[0] = 1
     prepared = runner.prepare(controlled)
     bound, next_check, shift, body = translation_bound(controlled), CHUNK_STEPS, 0.0, ""
@@ -275,10 +276,9 @@ def run_fixed_step(
         bar.update(done)
     run_time = _time.perf_counter() - start - streaming
     saved = np.arange(0 if stream is not None else n_save) * every * h
-    series = dict(zip(CHANNEL_NAMES, out.series, strict=True))
     return Record(
         time=saved,
-        series=series,
+        series=dict(zip(CHANNEL_NAMES, out.series, strict=True)),
         stats=out.stats,
         run_time=run_time,
         solver=runner.solver_attrs(out, prepared, n),

@@ -14,7 +14,8 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..compiled import CompiledScene, poses
+from ..compiled import CompiledScene
+from ..compiled.kernels import poses
 from ..linear import equilibrium_maps
 from ..waves import wavenumber
 from ._rk4_check import check_rk4 as check_rk4_region

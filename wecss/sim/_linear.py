@@ -11,7 +11,8 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..compiled import end_stop_force, pto_control_force, saturate
+from ..compiled import pto_control_force, saturate
+from ..compiled.kernels import end_stop_force
 from ..control import ControlledScene, compile_scene
 from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
 from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene, SceneError

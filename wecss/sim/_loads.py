@@ -19,15 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compiled import (
-    CompiledScene,
-    PtoKind,
-    end_stop_force,
-    hydro_velocity,
-    hydrostatic_force,
-    kinematics,
-    world_jacobian,
-)
+from ..compiled import CompiledScene, PtoKind
+from ..compiled.kernels import end_stop_force, hydro_velocity, hydrostatic_force, kinematics, world_jacobian
 from ..multibody import joint_reactions
 from ._sections import BodyHistory, section_loads
 

@@ -10,7 +10,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..compiled import Plant, kernel
+from ..compiled import Plant
+from ..compiled.kernels import kernel
 from ..outputs import CHANNEL_NAMES, CHANNELS
 
 ACCELERATION_FLOOR: float = 1e-11

@@ -21,7 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compiled import RadiationArrays, RadiationKind, kernel, matvec, matvec_add, reduction_kernel, step_kernel
+from ..compiled import RadiationArrays, RadiationKind
+from ..compiled.kernels import kernel, matvec, matvec_add, reduction_kernel, step_kernel
 
 BLOCK_STEPS: int = 32
 """Steps per block of the convolution's far sums (at most; see :func:`block_length`)."""

@@ -15,8 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import hydro_velocity, poses
-from ..control import ControlledScene, PowerBound, power_bound
+from ..compiled.kernels import hydro_velocity, poses
+from ..control import ControlledScene
+from ..control.design import PowerBound, power_bound
 from ..multibody import difference
 from ..waves import Ramp
 from ._layout import natural_hydro_order
@@ -202,7 +203,7 @@ def _limit(row: int, seconds: bool) -> Callable[[Quantities], np.ndarray | None]
 
 def power_bound_of(controlled: ControlledScene) -> PowerBound:
     """The complex-conjugate bound of the scene's wave components on its open plant (the exact frequency-domain
-    model; ``wecss.control.power_bound``), which every result in waves reports with its share of it."""
+    model; ``wecss.control.design.power_bound``), which every result in waves reports with its share of it."""
     exc = controlled.excitation
     if exc is None:
         raise ValueError("calm water has no power bound")

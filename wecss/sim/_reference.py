@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import workspace
+from ..compiled.kernels import workspace
 from ..control import ControlledScene
 from ..scene import Capabilities, Runner, Scene, SceneError
 from ._errors import SimulationDiverged

@@ -9,9 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import (
-    Plant,
-    RadiationArrays,
+from ..compiled import Plant, RadiationArrays
+from ..compiled.kernels import (
     Workspace,
     configuration_rate,
     configure,

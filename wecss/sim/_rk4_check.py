@@ -17,14 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compiled import (
-    CompiledScene,
-    integrate_configuration,
-    kinematics,
-    linear_damping,
-    pto_strokes,
-    world_jacobian,
-)
+from ..compiled import CompiledScene, linear_damping
+from ..compiled.kernels import integrate_configuration, kinematics, pto_strokes, world_jacobian
 from ..linear import linearize
 from ..scene import SceneError
 

@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 
 from ..attributes import apply_attrs
-from ..compiled import poses
+from ..compiled.kernels import poses
 from ..control import ControlledScene
 from ..netcdf import AppendingWriter
 from ..outputs import STREAMED_GROUPS

@@ -4,7 +4,7 @@ Each is an instance of a :class:`wecss.scene.Runner`; the fixed-step integrators
 :class:`FixedStepRunner`, which owns the time loop (a new integrator gives the kernel that advances a chunk of
 steps; see ``docs/architecture.md``). The pieces such a kernel uses are here too: the loop's state and settings,
 the recorder, the checks, the radiation memory's history and advance; the equations of motion themselves are
-``wecss.compiled.configure`` and ``respond``.
+``wecss.compiled.kernels.configure`` and ``respond``.
 """
 
 from ._beeman import BEEMAN as BEEMAN

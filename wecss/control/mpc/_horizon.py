@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..linear import LinearModel, exact_step
+from ...linear import LinearModel, exact_step
 
 
 @dataclass(frozen=True)

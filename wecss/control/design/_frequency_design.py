@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..linear import LinearModel
+from ...compiled import pto_gains
+from ...linear import LinearModel
 
 
 @dataclass(frozen=True)
@@ -141,14 +142,7 @@ def _closed_loop(
     return velocity, -impedance.T * velocity
 
 
-def _gains(values: np.ndarray | float, n_pto: int, label: str) -> np.ndarray:
-    array = np.asarray(values, dtype=float)
-    if array.size not in (1, n_pto) or not np.all(np.isfinite(array)):
-        raise ValueError(f"{label}: expected 1 or {n_pto} finite values; got {values!r}")
-    return np.broadcast_to(array, (n_pto,)).copy()
-
-
-def mean_power(
+def gains_power(
     model: LinearModel,
     omega: np.ndarray,
     coefficients: np.ndarray,
@@ -166,7 +160,7 @@ def mean_power(
     driven, admittance = pto_response(model, omega, coefficients)
     omega = np.atleast_1d(np.asarray(omega, dtype=float))
     n_pto = driven.shape[0]
-    c, k = _gains(damping, n_pto, "damping"), _gains(stiffness, n_pto, "stiffness")
+    c, k = pto_gains(damping, stiffness, n_pto)
     velocity, force = _closed_loop(driven, admittance, omega, c, k)
     power = 0.5 * c * np.sum(np.abs(velocity) ** 2, axis=1)
     return LinearGains(c, k, power, np.sqrt(0.5 * np.sum(np.abs(force) ** 2, axis=1)))
@@ -199,7 +193,7 @@ def optimal_damping(model: LinearModel, omega: np.ndarray, coefficients: np.ndar
     from scipy.optimize import minimize  # lazy: importing scipy.optimize takes about 0.25 s
 
     result = minimize(negative_power, start, method="L-BFGS-B", options={"ftol": 1e-15, "gtol": 1e-12})
-    return mean_power(model, omega, coefficients, np.exp(result.x))
+    return gains_power(model, omega, coefficients, np.exp(result.x))
 
 
 def optimal_spring_damper(
@@ -231,9 +225,11 @@ def optimal_spring_damper(
     n_pto = driven.shape[0]
     if not force_margin > 0:
         raise ValueError(f"force_margin must be positive; got {force_margin!r}")
-    limit = None if force_limit is None else _gains(force_limit, n_pto, "force_limit")
-    if limit is not None and np.any(limit <= 0):
-        raise ValueError(f"force_limit must be positive [N or N m]; got {force_limit!r}")
+    limit = None
+    if force_limit is not None:
+        limit = np.broadcast_to(np.asarray(force_limit, dtype=float), (n_pto,)).copy()
+        if np.any(~(limit > 0)):
+            raise ValueError(f"force_limit must be positive [N or N m], 1 or {n_pto} values; got {force_limit!r}")
     g = model.pto_jacobian
     stiffness0 = model.stiffness - g.T @ np.diag(model.pto_stiffness) @ g  # the plant's own
     start = optimal_damping(model, omega, coefficients)
@@ -273,4 +269,4 @@ def optimal_spring_damper(
         options={"ftol": 1e-14, "maxiter": 500},
     )  # fmt: skip
     c, k = unpack(result.x)
-    return mean_power(model, omega, coefficients, np.maximum(c, 0.0), k)
+    return gains_power(model, omega, coefficients, np.maximum(c, 0.0), k)

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import expm, solve_discrete_are
 
-from ..linear import LinearModel
+from ...linear import LinearModel
 
 LEAK: float = 1e-3
 """Extra decay rate of the filter's plant model, relative to the lowest oscillator frequency [-]."""
