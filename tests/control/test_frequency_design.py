@@ -60,7 +60,7 @@ def test_bad_inputs_name_what_was_received():
         power_bound(model, np.array([1.0, 2.0]), np.ones((2, 2)))
     with pytest.raises(ValueError, match="positive and finite"):
         power_bound(model, np.array([-1.0]), np.ones((1, 1)))
-    with pytest.raises(ValueError, match="damping: expected 1 or 1 finite values"):
+    with pytest.raises(ValueError, match="damping gains: expected 1 or 1 finite values"):
         gains_power(model, np.array([1.0]), np.ones((1, 1)), np.array([np.nan]))
     with pytest.raises(ValueError, match="force_limit must be positive"):
         optimal_spring_damper(model, np.array([1.0]), np.ones((1, 1)), force_limit=-1.0)
