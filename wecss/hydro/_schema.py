@@ -84,14 +84,14 @@ def check_mode_name(mode: str) -> str:
     ------
     ValueError
         If it is not a non-empty string, holds the separator ``__`` or surrounding blanks, or spells a rigid-body
-        DOF in another case (``heave``: ambiguous).
+        DOF (``Heave``, or ``heave``: ambiguous).
     """
     if not isinstance(mode, str) or not mode or mode != mode.strip() or DOF_SEPARATOR in mode:
         raise ValueError(
             f"generalised mode name {mode!r} must be a non-empty string without {DOF_SEPARATOR!r} or surrounding "
             "blanks (such as 'flex1')"
         )
-    if mode.lower() in _FOLDED_RIGID and mode not in RIGID_BODY_DOFS:
+    if mode.lower() in _FOLDED_RIGID:
         raise ValueError(
             f"generalised mode name {mode!r} spells the rigid-body DOF {_FOLDED_RIGID[mode.lower()]!r}; "
             "choose another name (such as 'flex1')"
@@ -173,7 +173,9 @@ def dof_kind(dof: str) -> str:
         If ``dof`` is neither a rigid-body DOF, a valid mode name nor a full DOF name.
     """
     text = str(dof)
-    part = split_dof(text)[1] if DOF_SEPARATOR in text else check_mode_name(text)
+    part = split_dof(text)[1] if DOF_SEPARATOR in text else text
+    if part not in RIGID_BODY_DOFS:
+        check_mode_name(part)
     if part in _LINEAR:
         return "linear"
     if part in RIGID_BODY_DOFS:
