@@ -55,12 +55,12 @@ if (
 
 
 def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """At the static equilibrium: B (6n, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
+    """At the static equilibrium: B (n_cart, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
     transmissions G (n_pto, nv) and the PTO strokes from their rest positions (n_pto,)."""
     p = compiled.plant
     rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(p.twists.shape[0]))
     stroke, g = pto_strokes(p, compiled.q0, rot, pos, b)
-    return b, world_jacobian(rot, b)[p.hydro_index], g, stroke - p.pto_rest
+    return b, world_jacobian(p, rot, b)[p.hydro_index], g, stroke - p.pto_rest
 
 
 @dataclass(frozen=True)
