@@ -71,6 +71,24 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "pto_kind": {"long_name": "kind of power take-off: rotary (on a revolute joint) or linear (prismatic or actuator)"},
     "hydro_dof_linear": {"long_name": "translational degree of freedom of the hydrodynamic database (body__Dof)"},
     "hydro_dof_angular": {"long_name": "rotational degree of freedom of the hydrodynamic database (body__Dof)"},
+    # generalised modes of bodies (wecss.multibody.GeneralisedModes): coordinates [1], forces [J] per unit coordinate
+    "dof_generalised": {"long_name": "generalised coordinate of a body's generalised mode (body__mode)"},
+    "hydro_dof_generalised": {"long_name": "generalised mode of the hydrodynamic database (body__mode)"},
+    "generalised_coordinate": {"long_name": "coordinate of a body's generalised mode", "units": "1"},
+    "generalised_velocity": {"long_name": "rate of a body's generalised mode", "units": "1/s"},
+    "generalised_acceleration": {"long_name": "acceleration of a body's generalised mode", "units": "1/s^2"},
+    "excitation_generalised_force": {
+        "long_name": "wave excitation on a generalised mode (work per unit coordinate)",
+        "units": "J",
+    },
+    "radiation_generalised_force": {
+        "long_name": "radiation memory force on a generalised mode (without the A_inf part)",
+        "units": "J",
+    },
+    "hydro_generalised_velocity": {
+        "long_name": "rate of a generalised mode of the hydrodynamic database",
+        "units": "1/s",
+    },
     "displacement": {"long_name": "translational generalised coordinate", "units": "m"},
     "angle": {"long_name": "rotational generalised coordinate", "units": "rad"},
     "velocity": {"long_name": "translational generalised velocity", "units": "m/s"},
