@@ -70,7 +70,7 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     device = compiled.device.model
     amplitudes = response_amplitudes(model, exc.omega, exc.coefficients)  # (nv, n_w)
     stroke = model.pto_jacobian @ amplitudes  # (n_pto, n_w)
-    kinds = np.array(device.velocity_kinds)
+    velocity_kinds = np.array(device.velocity_kinds)
     names = np.array(device.velocity_names)
     ptos = [p.name for p in compiled.device.ptos]
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
@@ -86,9 +86,9 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
             data[name] = (("omega", dim), exc.coefficients[mask].T)
             coords[dim] = [d for d, m in zip(exc.dofs, mask, strict=True) if m]
     for mask, name, dim in (
-        (kinds == "linear", "displacement_amplitude", "dof_linear"),
-        (kinds == "angular", "angle_amplitude", "dof_angular"),
-        (kinds == "generalised", "generalised_coordinate_amplitude", "dof_generalised"),
+        (velocity_kinds == "linear", "displacement_amplitude", "dof_linear"),
+        (velocity_kinds == "angular", "angle_amplitude", "dof_angular"),
+        (velocity_kinds == "generalised", "generalised_coordinate_amplitude", "dof_generalised"),
     ):
         if mask.any():
             data[name] = (("omega", dim), amplitudes[mask].T)

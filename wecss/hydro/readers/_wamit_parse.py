@@ -352,11 +352,11 @@ def read_out(path: Path, excitation: str = "diffraction", generalised_modes: dic
         where = period_lines[missing[0]] if missing else period_lines[0]
         raise _error(path, where, "each finite wave period needs one 'ADDED-MASS AND DAMPING COEFFICIENTS' table")
 
-    counts = dict(generalised_modes or {})
-    beyond = sorted(k for k in counts if not 1 <= k <= len(bodies))
+    per_body = dict(generalised_modes or {})
+    beyond = sorted(k for k in per_body if not 1 <= k <= len(bodies))
     if beyond:
         raise WamitFormatError(f"{path}: generalised modes are given for body {beyond[0]}; the run has {len(bodies)}")
-    generalised = tuple(int(counts.get(k + 1, 0)) for k in range(len(bodies)))
+    generalised = tuple(int(per_body.get(k + 1, 0)) for k in range(len(bodies)))
     n_modes = sum(6 + m for m in generalised)
     n_per = len(periods)
 
