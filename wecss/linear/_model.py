@@ -9,9 +9,10 @@ force on every hydro DOF (world axes) and a PTO force per PTO added to the linea
     M xi_ddot = -K xi - C xi_dot + Bw' (F_exc - C_r r) + G' f_pto,     r_dot = A_r r + B_r Bw xi_dot
 
 with M = M*(q0) (A_inf with the simulator's consistency correction), K the static stiffness with its geometric
-part, the moorings' springs and the controller's linear stiffness, C = G' diag(c) G + diag(c_j) + Bw' C_m Bw the
-controller's linear damping, the joints' own losses (``Joint.damping``) and the moorings' dampers C_m, Bw the
-world-frame Jacobian of the hydro DOFs and G the PTO transmissions
+part, the moorings' springs, the generalised modes' structural stiffness and the controller's linear stiffness,
+C = G' diag(c) G + diag(c_j) + Bw' C_m Bw + C_modes the controller's linear damping, the joints' own losses
+(``Joint.damping``), the moorings' dampers C_m and the modes' structural damping, Bw the world-frame Jacobian of
+the hydro DOFs (a generalised mode's row: the rate of its coordinate) and G the PTO transmissions
 at q0. The gyroscopic and Bdot terms are quadratic in the
 velocities and vanish at equilibrium.
 
