@@ -54,7 +54,7 @@ def test_every_file_the_table_names_exists():
         for token in _quoted(row):
             if _is_path(token) and not token.startswith(("../", "[")) and "<" not in token:
                 path = ROOT / token.split(" ")[0].rstrip(":")
-                assert path.exists() or path.parent.exists() and token.endswith("/"), f"{row[0]}: no {token}"
+                assert path.exists() or (path.parent.exists() and token.endswith("/")), f"{row[0]}: no {token}"
 
 
 def test_every_name_the_table_quotes_is_in_its_rows_files():

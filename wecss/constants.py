@@ -17,3 +17,7 @@ TIME_CONVENTION: str = "exp(+i omega t)"
 
 RIGID_BODY_DOFS: tuple[str, ...] = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 """Names of the six rigid-body degrees of freedom, in Capytaine's spelling and order."""
+
+DOF_KINDS: tuple[str, str, str] = ("linear", "angular", "generalised")
+"""The kinds of a degree of freedom (a generalised coordinate, a hydrodynamic DOF): a translation [m, N], a rotation
+[rad, N m], or a body's generalised mode (coordinate [1], force [J] = work per unit coordinate)."""

@@ -21,8 +21,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-DOF_KINDS: tuple[str, ...] = ("linear", "angular", "generalised")
-"""The kinds of a generalised coordinate or hydrodynamic DOF: translation, rotation, a body's generalised mode."""
+from .constants import DOF_KINDS
 
 PTO_KINDS: tuple[str, ...] = ("rotary", "linear")
 """The kinds of a PTO: on a revolute joint (torque [N m], stroke [rad]) or linear (force [N], stroke [m])."""
@@ -189,7 +188,7 @@ VARIABLES: tuple[Variable, ...] = (
         (
             "translational generalised coordinate",
             "rotational generalised coordinate",
-            "generalised coordinate of a body's generalised mode",
+            "coordinate of a body's generalised mode",
         ),
         ("m", "rad", "1"),
     ),
@@ -256,30 +255,34 @@ VARIABLES: tuple[Variable, ...] = (
     *_by_hydro_kind(
         "excitation",
         "excitation",
-        ("excitation_force", "excitation_moment", "generalised_excitation_force"),
+        ("excitation_force", "excitation_moment", "excitation_generalised_force"),
         (
             "wave excitation force, world axes",
             "wave excitation moment about the centre of mass, world axes",
-            "wave excitation force on a body's generalised mode",
+            "wave excitation on a generalised mode (work per unit coordinate)",
         ),
         ("N", "N m", "J"),
     ),
     *_by_hydro_kind(
         "radiation",
         "radiation",
-        ("radiation_force", "radiation_moment", "generalised_radiation_force"),
+        ("radiation_force", "radiation_moment", "radiation_generalised_force"),
         (
             "radiation memory force (without the A_inf part), world axes",
             "radiation memory moment (without the A_inf part), world axes",
-            "radiation memory force (without the A_inf part) on a body's generalised mode",
+            "radiation memory force on a generalised mode (without the A_inf part)",
         ),
         ("N", "N m", "J"),
     ),
     *_by_hydro_kind(
         "radiation",
         "hydro_velocity",
-        ("hydro_velocity", "hydro_angular_velocity", "generalised_hydro_velocity"),
-        ("velocity of the centre of mass, world axes", "angular velocity, world axes", "rate of a generalised mode"),
+        ("hydro_velocity", "hydro_angular_velocity", "hydro_generalised_velocity"),
+        (
+            "velocity of the centre of mass, world axes",
+            "angular velocity, world axes",
+            "rate of a generalised mode of the hydrodynamic database",
+        ),
         ("m/s", "rad/s", "1/s"),
     ),
     Variable(

@@ -7,6 +7,12 @@ it; the tests check it against the object-based implementation.
 Loads: hydrodynamic forces act in world axes on the hydro DOFs (linear hydrodynamics), so they enter through the
 world-frame Jacobian Bw (CoM velocity and world angular velocity per body): F* = Bw' F_world. The hydro velocity
 u = Bw v drives the radiation memory.
+
+Cartesian rows: every body's rows are found through the plant's ``cart_start`` (its first row) and ``cart_body``,
+``cart_axis`` (a row's body and axis), never as 6 per body. A generalised mode's row (axis 6..) is the rate of its
+coordinate: B is the identity on its column (``cart_column``), Bdot and the gyroscopic term are zero, its world row
+of Bw is its B row, its hydrostatic displacement is the coordinate itself (``cart_coordinate``), and its
+structural stiffness and damping (``mode_stiffness``, ``mode_damping``) act as generalised forces.
 """
 
 from __future__ import annotations
@@ -142,16 +148,16 @@ class Workspace(NamedTuple):
 
     Configuration (filled by :func:`place` and :func:`configure`, functions of q alone)
         rot (n, 3, 3), trans (n, 3): frame displacement of each body from its reference pose; pos (n, 3) CoM
-        positions; cols (6, nv) joint twists S in world axes; b (6n, nv) B (rows: CoM velocity, body angular
-        velocity); bat (nv, m) its active rows, transposed; bh (n_h, nv) the hydro rows of the world Jacobian Bw;
-        mass (nv, nv) M* and factor its Cholesky factor; gen_config (nv,) the generalised force of the
-        configuration's loads (gravity, buoyancy, hydrostatics and the given hydro force); stroke, gmat (n_pto,),
-        (n_pto, nv) PTO strokes from rest and transmissions
+        positions; cols (6, nv) joint twists S in world axes; b (n_cart, nv) B (rows: CoM velocity, body angular
+        velocity, the modes' rates); bat (nv, m) its active rows, transposed; bh (n_h, nv) the hydro rows of the
+        world Jacobian Bw; mass (nv, nv) M* and factor its Cholesky factor; gen_config (nv,) the generalised force
+        of the configuration's loads (gravity, buoyancy, hydrostatics, the modes' structural stiffness and the given
+        hydro force); stroke, gmat (n_pto,), (n_pto, nv) PTO strokes from rest and transmissions
     Velocity (filled by :func:`move` and :func:`respond`)
         spatial (n, 6) spatial twists; cols_dot (6, nv) dS/dt; omega (n, 3) body angular velocities; lin (n, 3) CoM
-        velocities; bias (6n,) Bdot v; acc (nv,) accelerations; u (n_h,) hydro velocities (world axes); xdot, f
+        velocities; bias (n_cart,) Bdot v; acc (nv,) accelerations; u (n_h,) hydro velocities (world axes); xdot, f
         (n_pto,) PTO rates and forces
-    Scratch: force (6n,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
+    Scratch: force (n_cart,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
     vec, vec2, t_step (3,), r_step, r_new (3, 3)
     """
 
@@ -195,24 +201,26 @@ class Workspace(NamedTuple):
 def workspace(p: Plant) -> Workspace:
     """A :class:`Workspace` for the plant ``p``."""
     n = p.com0.shape[0]
+    n_cart = p.cart_body.shape[0]
     nv = p.twists.shape[0]
     m = p.active.shape[0]
     n_h = p.hydro_index.shape[0]
     n_pto = p.pto_kind.shape[0]
     return Workspace(
-        np.zeros((n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((6, nv)), np.zeros((6 * n, nv)),
+        np.zeros((n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((6, nv)), np.zeros((n_cart, nv)),
         np.zeros((nv, m)), np.zeros((n_h, nv)), np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros(nv),
         np.zeros(n_pto), np.zeros((n_pto, nv)),
-        np.zeros((n, 6)), np.zeros((6, nv)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(6 * n), np.zeros(nv),
+        np.zeros((n, 6)), np.zeros((6, nv)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n_cart), np.zeros(nv),
         np.zeros(n_h), np.zeros(n_pto), np.zeros(n_pto),
-        np.zeros(6 * n), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
+        np.zeros(n_cart), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
         np.zeros(6), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3),
     )  # fmt: skip
 
 
 @inline_kernel
 def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
-    """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w``."""
+    """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w`` (a
+    generalised mode's row of B: the identity on its column)."""
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
     rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
@@ -224,16 +232,22 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
     for i in range(n):
         r = rot[i]
         pi = w.pos[i]
+        r0 = p.cart_start[i]
         for c in range(nv):
             if p.chain[i, c] == 0.0:
                 for a in range(6):
-                    b[6 * i + a, c] = 0.0
+                    b[r0 + a, c] = 0.0
                 continue
             s = cols[:, c]
             _cross(pi, s[3:], tmp)
             for a in range(3):
-                b[6 * i + a, c] = s[a] - tmp[a]
-                b[6 * i + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+                b[r0 + a, c] = s[a] - tmp[a]
+                b[r0 + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+    for k in range(p.mode_row.shape[0]):  # a generalised mode: the rate of its own coordinate
+        row = p.mode_row[k]
+        for c in range(nv):
+            b[row, c] = 0.0
+        b[row, p.cart_column[row]] = 1.0
 
 
 @inline_kernel
@@ -379,23 +393,25 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
                     acc[a] += cols_dot[a, c] * v[c]
         _cross(w.lin[i], spatial[3:], tmp)
         _cross(pi, acc[3:], tmp2)
-        for a in range(3):
-            w.bias[6 * i + a] = -tmp[a] + acc[a] - tmp2[a]
-            w.bias[6 * i + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
+        r0 = p.cart_start[i]
+        for a in range(3):  # (a generalised mode's row of Bdot v stays zero)
+            w.bias[r0 + a] = -tmp[a] + acc[a] - tmp2[a]
+            w.bias[r0 + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
 
 
 @kernel
 def _bdot(p: Plant, w: Workspace) -> np.ndarray:
-    """Bdot (6n, nv) from the kinematics in ``w`` (:func:`place` and :func:`move`): column by column,
-    Bdot_i = [[0, -hat(p_dot)], [0, -hat(w_b) R']] S + [[I, -hat(p)], [0, R']] dS/dt."""
+    """Bdot (n_cart, nv) from the kinematics in ``w`` (:func:`place` and :func:`move`): column by column,
+    Bdot_i = [[0, -hat(p_dot)], [0, -hat(w_b) R']] S + [[I, -hat(p)], [0, R']] dS/dt (zero on the modes' rows)."""
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
-    bdot = np.zeros((6 * n, nv))
+    bdot = np.zeros((p.cart_body.shape[0], nv))
     tmp, tmp2 = np.zeros(3), np.zeros(3)
     rts, rtsd = np.zeros(3), np.zeros(3)
     for i in range(n):
         r = w.rot[i]
         pi = w.pos[i]
+        r0 = p.cart_start[i]
         for c in range(nv):
             if p.chain[i, c] == 0.0:
                 continue
@@ -404,19 +420,20 @@ def _bdot(p: Plant, w: Workspace) -> np.ndarray:
             _cross(w.lin[i], s[3:], tmp)
             _cross(pi, sd[3:], tmp2)
             for a in range(3):
-                bdot[6 * i + a, c] = -tmp[a] + sd[a] - tmp2[a]
+                bdot[r0 + a, c] = -tmp[a] + sd[a] - tmp2[a]
             for a in range(3):
                 rts[a] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
                 rtsd[a] = r[0, a] * sd[3] + r[1, a] * sd[4] + r[2, a] * sd[5]
             _cross(w.omega[i], rts, tmp)
             for a in range(3):
-                bdot[6 * i + 3 + a, c] = -tmp[a] + rtsd[a]
+                bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
     return bdot
 
 
 @kernel
 def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
-    """Rotations (n, 3, 3), CoM positions (n, 3), B (6n, nv), Bdot (6n, nv) and body angular velocities (n, 3)."""
+    """Rotations (n, 3, 3), CoM positions (n, 3), B (n_cart, nv), Bdot (n_cart, nv) and body angular velocities
+    (n, 3)."""
     w = workspace(p)
     place(p, q, w)
     move(p, v, w)
@@ -424,37 +441,37 @@ def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
 
 
 @kernel
-def world_jacobian(rot: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Bw: rows per body (CoM velocity, world angular velocity) from B (rows CoM velocity, body angular velocity)."""
+def world_jacobian(p: Plant, rot: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Bw: rows per body (CoM velocity, world angular velocity, the modes' rates) from B (rows CoM velocity, body
+    angular velocity, the modes' rates)."""
     out = b.copy()
     nv = b.shape[1]
     for i in range(rot.shape[0]):
         r = rot[i]
+        r3 = p.cart_start[i] + 3
         for a in range(3):
             for c in range(nv):
-                out[6 * i + 3 + a, c] = (
-                    r[a, 0] * b[6 * i + 3, c] + r[a, 1] * b[6 * i + 4, c] + r[a, 2] * b[6 * i + 5, c]
-                )
+                out[r3 + a, c] = r[a, 0] * b[r3, c] + r[a, 1] * b[r3 + 1, c] + r[a, 2] * b[r3 + 2, c]
     return out
 
 
 @inline_kernel
 def _hydro_jacobian(p: Plant, w: Workspace) -> None:
-    """The hydro DOFs' rows of Bw into ``w.bh`` (world axes: rotational rows are R times B's body-axis rows)."""
+    """The hydro DOFs' rows of Bw into ``w.bh`` (world axes: rotational rows are R times B's body-axis rows; the
+    translations' and the modes' rows are B's)."""
     nv = p.twists.shape[0]
     hi = p.hydro_index
     for k in range(hi.shape[0]):
-        i = hi[k] // 6
-        a = hi[k] % 6
-        if a < 3:
+        i = p.cart_body[hi[k]]
+        a = p.cart_axis[hi[k]]
+        if a < 3 or a >= 6:
             for c in range(nv):
                 w.bh[k, c] = w.b[hi[k], c]
         else:
             r = w.rot[i]
+            r3 = p.cart_start[i] + 3
             for c in range(nv):
-                w.bh[k, c] = (
-                    r[a - 3, 0] * w.b[6 * i + 3, c] + r[a - 3, 1] * w.b[6 * i + 4, c] + r[a - 3, 2] * w.b[6 * i + 5, c]
-                )
+                w.bh[k, c] = r[a - 3, 0] * w.b[r3, c] + r[a - 3, 1] * w.b[r3 + 1, c] + r[a - 3, 2] * w.b[r3 + 2, c]
 
 
 @inline_kernel
@@ -502,13 +519,14 @@ def _pto_strokes_into(
                         continue
                     point = p.pto_point_a[k] if e == 0 else p.pto_point_b[k]
                     r = rot[body]
-                    w0, w1, w2 = b[6 * body + 3, c], b[6 * body + 4, c], b[6 * body + 5, c]
+                    r0 = p.cart_start[body]
+                    w0, w1, w2 = b[r0 + 3, c], b[r0 + 4, c], b[r0 + 5, c]
                     y0 = point[1] * w2 - point[2] * w1
                     y1 = point[2] * w0 - point[0] * w2
                     y2 = point[0] * w1 - point[1] * w0
-                    j0 = b[6 * body, c] - (r[0, 0] * y0 + r[0, 1] * y1 + r[0, 2] * y2)
-                    j1 = b[6 * body + 1, c] - (r[1, 0] * y0 + r[1, 1] * y1 + r[1, 2] * y2)
-                    j2 = b[6 * body + 2, c] - (r[2, 0] * y0 + r[2, 1] * y1 + r[2, 2] * y2)
+                    j0 = b[r0, c] - (r[0, 0] * y0 + r[0, 1] * y1 + r[0, 2] * y2)
+                    j1 = b[r0 + 1, c] - (r[1, 0] * y0 + r[1, 1] * y1 + r[1, 2] * y2)
+                    j2 = b[r0 + 2, c] - (r[2, 0] * y0 + r[2, 1] * y1 + r[2, 2] * y2)
                     sign = 1.0 if e == 0 else -1.0
                     g += sign * (n0 * j0 + n1 * j1 + n2 * j2)
                 gmat[k, c] = g
@@ -527,6 +545,7 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
 @inline_kernel
 def _hydrostatic_into(
     p: Plant,
+    q: np.ndarray,
     rot: np.ndarray,
     pos: np.ndarray,
     disp: np.ndarray,
@@ -534,30 +553,40 @@ def _hydrostatic_into(
     rv: np.ndarray,
     out: np.ndarray,
 ) -> None:
-    """Gravity, buoyancy and the linear hydrostatic and mooring restoring force, world axes, into ``out`` (6n,) [N, N m]
-    (``disp`` and ``restoring`` (n_h,) and ``rv`` (3,) are scratch)."""
+    """Gravity, buoyancy, the linear hydrostatic and mooring restoring force (world axes) and the modes' structural
+    stiffness into ``out`` (n_cart,) [N, N m, J] at configuration ``q`` (``disp`` and ``restoring`` (n_h,) and
+    ``rv`` (3,) are scratch)."""
     hi = p.hydro_index
     for k in range(hi.shape[0]):
-        i = hi[k] // 6
-        a = hi[k] % 6
+        i = p.cart_body[hi[k]]
+        a = p.cart_axis[hi[k]]
         if a < 3:
             disp[k] = pos[i, a] - p.com0[i, a]
-        else:
+        elif a < 6:
             so3_log_into(rot[i], rv)
             disp[k] = rv[a - 3]
+        else:  # a generalised mode: its coordinate
+            disp[k] = q[p.cart_coordinate[hi[k]]]
     for k in range(out.shape[0]):
         out[k] = p.static_force[k]
     matvec(p.hydrostatic_stiffness, disp, restoring)
     for k in range(hi.shape[0]):
         out[hi[k]] -= restoring[k]
+    modes = p.mode_row
+    for k in range(modes.shape[0]):  # the modes' structural stiffness, -K xi
+        s = 0.0
+        for j in range(modes.shape[0]):
+            s += p.mode_stiffness[k, j] * q[p.cart_coordinate[modes[j]]]
+        out[modes[k]] -= s
 
 
 @kernel
-def hydrostatic_force(p: Plant, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
-    """Gravity, buoyancy and linear hydrostatic restoring force, world axes (6n,) [N, N m]."""
+def hydrostatic_force(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray) -> np.ndarray:
+    """Gravity, buoyancy and linear hydrostatic restoring force, world axes, and the modes' structural stiffness
+    (n_cart,) [N, N m, J] at configuration ``q`` (with its frames ``rot``, ``pos``)."""
     n_h = p.hydro_index.shape[0]
     out = np.empty(p.static_force.shape[0])
-    _hydrostatic_into(p, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out)
+    _hydrostatic_into(p, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out)
     return out
 
 
@@ -580,9 +609,9 @@ def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
 def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) -> bool:
     """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` alone, into ``w``:
     the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of gravity, buoyancy,
-    hydrostatics and ``hydro_force`` (n_h,) [N, N m] (excitation plus the memory force fixed by the past, world
-    axes), the PTO strokes and transmissions. Within a step of a predictor-corrector only the velocity changes:
-    :func:`respond` then reuses all of this.
+    hydrostatics, the modes' structural stiffness and ``hydro_force`` (n_h,) [N, N m] (excitation plus the memory
+    force fixed by the past, world axes), the PTO strokes and transmissions. Within a step of a predictor-corrector
+    only the velocity changes: :func:`respond` then reuses all of this.
 
     Returns False when M* is not positive definite (a degenerate configuration).
     """
@@ -591,14 +620,15 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) ->
     # world loads: gravity, buoyancy, hydrostatics and the given hydro force; through Bw, that is B with the
     # moments in body axes
     force = w.force
-    _hydrostatic_into(p, w.rot, w.pos, w.disp, w.restoring, w.vec, force)
+    _hydrostatic_into(p, q, w.rot, w.pos, w.disp, w.restoring, w.vec, force)
     hi = p.hydro_index
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
     for i in range(p.com0.shape[0]):
-        _rotate(w.rot[i].T, force[6 * i + 3 : 6 * i + 6], w.vec)
+        r3 = p.cart_start[i] + 3
+        _rotate(w.rot[i].T, force[r3 : r3 + 3], w.vec)
         for a in range(3):
-            force[6 * i + 3 + a] = w.vec[a]
+            force[r3 + a] = w.vec[a]
     for c in range(w.gen_config.shape[0]):
         w.gen_config[c] = 0.0
     matvec_t_add(w.b, force, w.gen_config)
@@ -640,17 +670,19 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     move(p, v, w)
     act = p.active
     m = act.shape[0]
-    # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows
+    # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows (none on the
+    # rows of generalised modes)
     for k in range(m):
         s = 0.0
         for j in range(m):
             s += p.active_mass[k, j] * w.bias[act[j]]
         row = act[k]
-        if row % 6 >= 3:
-            i = row // 6
+        axis = p.cart_axis[row]
+        if axis >= 3 and axis < 6:
+            i = p.cart_body[row]
             _rotate(p.inertia[i], w.omega[i], w.vec)
             _cross(w.omega[i], w.vec, w.vec2)
-            s += w.vec2[row % 6 - 3]
+            s += w.vec2[axis - 3]
         w.inertial[k] = -s
     gen = w.gen
     for c in range(gen.shape[0]):
@@ -658,6 +690,12 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     matvec_add(w.bat, w.inertial, gen)
     for c in range(gen.shape[0]):
         gen[c] -= p.joint_damping[c] * v[c]  # the joints' own losses
+    modes = p.mode_row
+    for k in range(modes.shape[0]):  # the modes' structural damping, -C xi_dot
+        s = 0.0
+        for j in range(modes.shape[0]):
+            s += p.mode_damping[k, j] * v[p.cart_column[modes[j]]]
+        gen[p.cart_column[modes[k]]] -= s
     # the memory force of the newest hydro velocity, through Bw
     matvec(w.bh, v, w.u)
     matvec(newest, w.u, w.load)
@@ -723,7 +761,8 @@ def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 @kernel
 def integrate_configuration(p: Plant, q: np.ndarray, dv: np.ndarray) -> np.ndarray:
-    """q moved by the velocity increment dv (free bases on SO(3) through their quaternion)."""
+    """q moved by the velocity increment dv (free bases on SO(3) through their quaternion; joint and modal
+    coordinates add)."""
     out = q.copy()
     for i in range(p.com0.shape[0]):
         iq = p.q_start[i]
@@ -745,12 +784,15 @@ def integrate_configuration(p: Plant, q: np.ndarray, dv: np.ndarray) -> np.ndarr
         else:
             for k in range(p.n_cols[i]):
                 out[iq + k] += dv[iv + k]
+    for k in range(p.mode_row.shape[0]):
+        row = p.mode_row[k]
+        out[p.cart_coordinate[row]] += dv[p.cart_column[row]]
     return out
 
 
 @kernel
 def configuration_rate(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """dq/dt: v for joint coordinates; CoM velocity and quaternion rate for a free base."""
+    """dq/dt: v for joint and modal coordinates; CoM velocity and quaternion rate for a free base."""
     out = np.zeros(q.shape[0])
     for i in range(p.com0.shape[0]):
         iq = p.q_start[i]
@@ -763,6 +805,9 @@ def configuration_rate(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         else:
             for k in range(p.n_cols[i]):
                 out[iq + k] = v[iv + k]
+    for k in range(p.mode_row.shape[0]):
+        row = p.mode_row[k]
+        out[p.cart_coordinate[row]] = v[p.cart_column[row]]
     return out
 
 

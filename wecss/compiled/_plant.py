@@ -12,7 +12,16 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..multibody import PTO, ActuatorPTO, HydroCoupling, JointPTO, Multibody, integrate, kinematics
+from ..multibody import (
+    PTO,
+    ActuatorPTO,
+    HydroCoupling,
+    JointPTO,
+    Multibody,
+    body_mass_matrix,
+    integrate,
+    kinematics,
+)
 
 
 class PtoKind(IntEnum):
@@ -23,22 +32,34 @@ class PtoKind(IntEnum):
 
 
 class Plant(NamedTuple):
-    """Flat arrays of a device (all SI; Cartesian vectors hold 6 entries per body, see ``wecss.multibody``).
+    """Flat arrays of a device (all SI; Cartesian vectors hold each body's 6 rigid rows and then one row per
+    generalised mode of the body, see ``wecss.multibody``).
 
     Tree (bodies in the model's order; ``order`` is the topological order)
-        order, parent, free, col_start, n_cols, q_start : int arrays (n_body,)
+        order, parent, free, col_start, n_cols, q_start : int arrays (n_body,) (the joints' columns and coordinates)
         com0 : (n_body, 3) centres of mass at the reference configuration [m]
-        twists : (nv, 6) joint twists in the world frame at the reference configuration (unused for free joints)
-        chain : (n_body, nv) 1.0 where a velocity moves the body
+        twists : (nv, 6) joint twists in the world frame at the reference configuration (unused for free joints,
+        zero for the modes' columns)
+        chain : (n_body, nv) 1.0 where a joint velocity moves the body's rigid rows (0 on the modes' columns)
+    Cartesian rows (the only place that knows a body's rows; kernels never assume 6 per body)
+        cart_start, cart_size : (n_body,) each body's first Cartesian row and its number of rows (6 + its modes)
+        cart_body, cart_axis : (n_cart,) each row's body and axis (0-2 CoM velocity x, y, z in world axes, 3-5 body
+        angular velocity, 6.. the body's generalised modes)
+        cart_column, cart_coordinate : (n_cart,) a mode row's generalised velocity and coordinate (B is the identity
+        on that column, Bdot zero), -1 on rigid rows
+        mode_row : (n_mode,) the Cartesian row of each generalised mode
+        mode_stiffness, mode_damping : (n_mode, n_mode) the modes' structural stiffness [N m] and damping
+        [N m s] (generalised forces -K xi, -C xi_dot)
     Mass
         mass : (n_body,) [kg]; inertia : (n_body, 3, 3) [kg m^2]
-        total_mass : (6n, 6n) rigid mass plus infinite-frequency added mass
+        rigid_mass : (n_cart, n_cart) diag(m I3, J, M_modes) per body (the modes' generalised mass [kg m^2])
+        total_mass : (n_cart, n_cart) rigid mass plus infinite-frequency added mass
         active : Cartesian rows that can move (found by probing the kinematics; all others stay zero in B)
         active_mass : total_mass on the active rows and columns
     Hydrostatics
-        hydro_index : (n_h,) Cartesian index of each hydro DOF
+        hydro_index : (n_h,) Cartesian row of each hydro DOF
         hydrostatic_stiffness : (n_h, n_h) about the centres of mass, the moorings' springs included [N/m, N m/rad, ...]
-        static_force : (6n,) gravity plus equilibrium buoyancy, world axes [N]
+        static_force : (n_cart,) gravity plus equilibrium buoyancy, world axes [N]
     PTOs (n_pto)
         pto_kind : a :class:`PtoKind`; pto_coordinate, pto_velocity : joint coordinate / velocity index (joint PTOs)
         pto_body_a, pto_body_b : body index or -1 for the ground (actuators)
@@ -69,8 +90,18 @@ class Plant(NamedTuple):
     com0: np.ndarray
     twists: np.ndarray
     chain: np.ndarray
+    cart_start: np.ndarray
+    cart_size: np.ndarray
+    cart_body: np.ndarray
+    cart_axis: np.ndarray
+    cart_column: np.ndarray
+    cart_coordinate: np.ndarray
+    mode_row: np.ndarray
+    mode_stiffness: np.ndarray
+    mode_damping: np.ndarray
     mass: np.ndarray
     inertia: np.ndarray
+    rigid_mass: np.ndarray
     total_mass: np.ndarray
     active: np.ndarray
     active_mass: np.ndarray
@@ -136,6 +167,27 @@ def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
     }
 
 
+def _cartesian_arrays(model: Multibody) -> dict[str, np.ndarray]:
+    """The Cartesian rows of ``model``: where each body's are, which body and axis each is, and the modes'."""
+    n_cart = model.n_cart
+    column = np.full(n_cart, -1, dtype=np.int64)
+    coordinate = np.full(n_cart, -1, dtype=np.int64)
+    rows = model.mode_rows
+    column[rows] = model.mode_velocities
+    coordinate[rows] = model.mode_coordinates
+    return {
+        "cart_start": np.asarray(model.cart_start, dtype=np.int64),
+        "cart_size": np.asarray(model.cart_size, dtype=np.int64),
+        "cart_body": np.asarray(model.cart_body, dtype=np.int64),
+        "cart_axis": np.asarray(model.cart_axis, dtype=np.int64),
+        "cart_column": column,
+        "cart_coordinate": coordinate,
+        "mode_row": np.ascontiguousarray(rows, dtype=np.int64),
+        "mode_stiffness": np.ascontiguousarray(model.mode_stiffness),
+        "mode_damping": np.ascontiguousarray(model.mode_damping),
+    }
+
+
 def _pto_arrays(model: Multibody, ptos: tuple[PTO, ...]) -> dict[str, np.ndarray]:
     n = len(ptos)
     out = {
@@ -179,10 +231,10 @@ def _pto_arrays(model: Multibody, ptos: tuple[PTO, ...]) -> dict[str, np.ndarray
 
 
 def moving_rows(model: Multibody, probes: int = 4) -> np.ndarray:
-    """Cartesian rows (6 per body) of B and Bdot that are non-zero at some configuration: evaluated at random
-    configurations and velocities, where a row that can move does so generically."""
+    """Cartesian rows of B and Bdot that are non-zero at some configuration: evaluated at random configurations and
+    velocities, where a row that can move does so generically (a generalised mode's row always moves)."""
     rng = np.random.default_rng(0)
-    moving = np.zeros(6 * len(model.bodies), dtype=bool)
+    moving = np.zeros(model.n_cart, dtype=bool)
     for _ in range(probes):
         q = integrate(model, model.neutral_configuration(), rng.uniform(-1.0, 1.0, model.nv))
         st = kinematics(model, q, rng.standard_normal(model.nv))
@@ -210,12 +262,10 @@ def build_plant(
     n = len(model.bodies)
     inertia = np.array([b.inertia for b in model.bodies])
     mass = np.array([b.mass for b in model.bodies])
-    rigid = np.zeros((6 * n, 6 * n))
-    static = coupling.buoyancy.copy() if coupling is not None else np.zeros(6 * n)
+    rigid = body_mass_matrix(model)
+    static = coupling.buoyancy.copy() if coupling is not None else np.zeros(model.n_cart)
     for i in range(n):
-        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = mass[i] * np.eye(3)
-        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = inertia[i]
-        static[6 * i + 2] -= mass[i] * g
+        static[model.cart_start[i] + 2] -= mass[i] * g
     index = np.asarray(coupling.index if coupling is not None else [], dtype=np.int64)
     added = coupling.added_mass_inf if coupling is not None else 0.0
     if added_mass_correction is not None and coupling is not None:
@@ -229,8 +279,10 @@ def build_plant(
     active = moving_rows(model)
     return Plant(
         **_tree_arrays(model),
+        **_cartesian_arrays(model),
         mass=mass,
         inertia=inertia,
+        rigid_mass=rigid,
         total_mass=total,
         active=active,
         active_mass=np.ascontiguousarray(total[np.ix_(active, active)]),
@@ -255,7 +307,12 @@ def mooring_damping_matrix(p: Plant) -> np.ndarray:
 
 
 def linear_damping(p: Plant, gmat: np.ndarray, bw: np.ndarray) -> np.ndarray:
-    """Generalised damping (nv, nv) of the linear PTO gains, the joints' own losses and the moorings' dampers at a
-    configuration with PTO transmissions ``gmat`` (n_pto, nv) and hydro rows of the world Jacobian ``bw``
-    (n_h, nv): G' diag(pto_damping) G + diag(joint_damping) + Bw' D_mooring Bw [N s/m, N m s/rad]."""
-    return gmat.T @ np.diag(p.pto_damping) @ gmat + np.diag(p.joint_damping) + bw.T @ mooring_damping_matrix(p) @ bw
+    """Generalised damping (nv, nv) of the linear PTO gains, the joints' own losses, the moorings' dampers and the
+    modes' structural damping at a configuration with PTO transmissions ``gmat`` (n_pto, nv) and hydro rows of the
+    world Jacobian ``bw`` (n_h, nv): G' diag(pto_damping) G + diag(joint_damping) + Bw' D_mooring Bw + C_modes
+    [N s/m, N m s/rad, N m s]."""
+    out = gmat.T @ np.diag(p.pto_damping) @ gmat + np.diag(p.joint_damping) + bw.T @ mooring_damping_matrix(p) @ bw
+    if p.mode_row.size:
+        columns = p.cart_column[p.mode_row]
+        out[np.ix_(columns, columns)] += p.mode_damping
+    return out

@@ -215,6 +215,12 @@ class Device:
                 f"  {b.name:10s} mass {b.mass:10.4g} kg  centre of mass {np.round(b.center_of_mass, 4).tolist()} m  "
                 f"inertia diag {np.round(np.diag(b.inertia), 4).tolist()} kg m^2  hydro {b.hydro_body or '-'}"
             )
+            if b.modes.n:
+                lines.append(
+                    f"  {'':10s} generalised modes {', '.join(b.modes.names)}: mass diag "
+                    f"{np.round(np.diag(b.modes.mass), 4).tolist()} kg m^2, stiffness diag "
+                    f"{np.round(np.diag(b.modes.stiffness), 4).tolist()} N m"
+                )
         lines.append("joints:")
         for j in m.ordered_joints:
             extra = ""

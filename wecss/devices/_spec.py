@@ -12,8 +12,12 @@ Spec layout (TOML; the same keys as a dict)::
     [assumptions]               # free text: what was assumed and why
     hinge_height = "0.25 m above still water ..."
     [[bodies]]                  # name, mass [kg], inertia [kg m^2] (3 diagonal values or 3x3 about the CoM),
-    name = "float_1"            # center_of_mass [m] (world, reference configuration), hydro_body (optional)
-    ...
+    name = "float_1"            # center_of_mass [m] (world, reference configuration), hydro_body (optional),
+    ...                         # modes (optional): the body's generalised modes, one generalised coordinate each
+                                # (<body>__<name>, dimensionless; the database's DOF <hydro_body>__<name> acts on
+                                # it), as a list [{name = "flex1", mass [kg m^2], stiffness [N m], damping
+                                # [N m s]}] or a table {names = [...], mass, stiffness, damping} of matrices or
+                                # diagonals (wecss.multibody.GeneralisedModes)
     [[joints]]                  # name, kind, child, parent (omit for the base), axis, point [m], label,
                                 # damping (the joint's own viscous loss, revolute/prismatic [N m s/rad, N s/m])
     ...
@@ -42,7 +46,7 @@ from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Mooring, Multibody
 _TOP_KEYS = {
     "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
 }  # fmt: skip
-_BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body"}
+_BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body", "modes"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
 _LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}
 _JOINT_PTO_KEYS = {"name", "kind", "joint", "damping", "stiffness", "rest", *_LIMIT_KEYS}

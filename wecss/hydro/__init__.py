@@ -11,8 +11,13 @@ from ._irregular import find_irregular_frequencies as find_irregular_frequencies
 from ._irregular import remove_irregular_frequencies as remove_irregular_frequencies
 from ._repair import RepairReport as RepairReport
 from ._repair import repair as repair
+from ._schema import DOF_KINDS as DOF_KINDS
+from ._schema import check_mode_name as check_mode_name
 from ._schema import dof_index as dof_index
+from ._schema import dof_kind as dof_kind
+from ._schema import dof_kinds as dof_kinds
 from ._schema import dof_name as dof_name
+from ._schema import is_rigid_dof as is_rigid_dof
 from ._schema import split_dof as split_dof
 from ._select import select as select
 from ._transform import move_reference_point as move_reference_point

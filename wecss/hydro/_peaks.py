@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ._schema import split_dof
+from ._schema import dof_kinds
 
 NEGLIGIBLE_RTOL: float = 1e-6
-"""A DOF whose damping peak is below this fraction of the largest damping peak of its kind (translation or
-rotation) is numerical noise (yaw of an axisymmetric body): its sign and spikes are not checked."""
+"""A DOF whose damping peak is below this fraction of the largest damping peak of its kind (translation,
+rotation or generalised mode) is numerical noise (yaw of an axisymmetric body): its sign and spikes are not checked."""
 
 
 def diagonal_peaks(ds: xr.Dataset, name: str) -> np.ndarray:
@@ -25,9 +25,11 @@ def diagonal_peaks(ds: xr.Dataset, name: str) -> np.ndarray:
 def negligible_dofs(ds: xr.Dataset) -> np.ndarray:
     """Boolean per DOF: damping peak below :data:`NEGLIGIBLE_RTOL` of the largest peak of its kind."""
     peak = diagonal_peaks(ds, "radiation_damping")
-    rotation = np.array([split_dof(d)[1] in ("Roll", "Pitch", "Yaw") for d in ds.radiating_dof.values])
+    kinds = np.array(dof_kinds([str(d) for d in ds.radiating_dof.values]))
+    rotation = kinds == "angular"
+    generalised = kinds == "generalised"
     out = np.zeros(peak.shape, dtype=bool)
-    for kind in (rotation, ~rotation):
+    for kind in (rotation, ~rotation & ~generalised, generalised):
         if np.any(kind):
             out[kind] = peak[kind] < NEGLIGIBLE_RTOL * np.max(peak[kind])
     return out

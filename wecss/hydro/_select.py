@@ -20,8 +20,8 @@ def select(ds: xr.Dataset, *, bodies: Iterable[str] | None = None, dofs: Iterabl
     bodies : iterable of str, optional
         Bodies to keep (default: all).
     dofs : iterable of str, optional
-        DOFs to keep, either rigid-body names applied to every kept body (``["Surge", "Heave", "Pitch"]``)
-        or full names (``["bow__Heave"]``). Default: all.
+        DOFs to keep, either DOF parts applied to every kept body (``["Surge", "Heave", "Pitch"]``, or a
+        generalised mode's name such as ``"flex1"``) or full names (``["bow__Heave"]``). Default: all.
 
     Returns
     -------
@@ -44,12 +44,14 @@ def select(ds: xr.Dataset, *, bodies: Iterable[str] | None = None, dofs: Iterabl
         wanted = [str(d) for d in dofs]
         short = [d for d in wanted if "__" not in d]
         full = [d for d in wanted if "__" in d]
-        bad_short = [d for d in short if d not in RIGID_BODY_DOFS]
+        modes = sorted({split_dof(d)[1] for d in all_dofs} - set(RIGID_BODY_DOFS))
+        bad_short = [d for d in short if d not in RIGID_BODY_DOFS and d not in modes]
         bad_full = [d for d in full if d not in all_dofs]
         if bad_short or bad_full:
+            named = f", the generalised modes {', '.join(modes)}" if modes else ""
             raise ValueError(
-                f"unknown DOFs {bad_short + bad_full}; accepted: {', '.join(RIGID_BODY_DOFS)} or full names such as "
-                f"{all_dofs[0]!r} (the database has {', '.join(all_dofs)})"
+                f"unknown DOFs {bad_short + bad_full}; accepted: {', '.join(RIGID_BODY_DOFS)}{named} or full names "
+                f"such as {all_dofs[0]!r} (the database has {', '.join(all_dofs)})"
             )
         kept = [d for d in kept if d in full or split_dof(d)[1] in short]
     if not kept:

@@ -21,7 +21,7 @@ import numpy as np
 import xarray as xr
 
 from ..constants import RIGID_BODY_DOFS
-from ._schema import dof_index, split_dof
+from ._schema import dof_index, is_rigid_dof, split_dof
 
 
 def hat(r: np.ndarray) -> np.ndarray:
@@ -66,7 +66,10 @@ def _dof_transform(ds: xr.Dataset, new_points: np.ndarray) -> np.ndarray:
     by_body: dict[str, list[tuple[int, int]]] = {}
     for k, name in enumerate(dofs):
         body, dof = split_dof(name)
-        by_body.setdefault(body, []).append((k, dof_index(dof)))
+        if is_rigid_dof(dof):
+            by_body.setdefault(body, []).append((k, dof_index(dof)))
+        else:  # a generalised mode: the identity
+            out[k, k] = 1.0
     for body, entries in by_body.items():
         b = bodies.index(body)
         full = force_transform(new_points[b] - old_points[b])
@@ -90,7 +93,10 @@ def _geometric_stiffness(ds: xr.Dataset, points: np.ndarray) -> np.ndarray:
     bodies = [str(b) for b in ds.body.values]
     rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
     out = np.zeros((len(dofs), len(dofs)))
-    index = {name: (bodies.index(split_dof(name)[0]), dof_index(split_dof(name)[1])) for name in dofs}
+    index = {
+        name: (bodies.index(split_dof(name)[0]), dof_index(split_dof(name)[1]) if is_rigid_dof(name) else -1)
+        for name in dofs
+    }
     for b, _ in enumerate(bodies):
         force = np.array([0.0, 0.0, rho * g * float(ds.displaced_volume.values[b])])
         k_rot = buoyancy_geometric_stiffness(force, ds.center_of_buoyancy.values[b] - points[b])

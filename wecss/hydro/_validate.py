@@ -18,6 +18,7 @@ from ._schema import (
     OPTIONAL_VARIABLES,
     REQUIRED_ATTRS,
     REQUIRED_VARIABLES,
+    is_rigid_dof,
     split_dof,
 )
 
@@ -123,6 +124,16 @@ def _check_dofs(ds: xr.Dataset) -> None:
     unknown = sorted(set(dof_bodies) - set(bodies))
     if unknown:
         raise HydroDataError(f"DOFs refer to bodies {unknown} that are not in the 'body' coordinate {bodies}")
+    seen_mode: dict[str, str] = {}
+    for name in rad:
+        body, dof = split_dof(name)
+        if not is_rigid_dof(dof):
+            seen_mode.setdefault(body, name)
+        elif body in seen_mode:
+            raise HydroDataError(
+                f"DOF {name!r} comes after the generalised mode {seen_mode[body]!r} of its body; each body's rigid "
+                "DOFs (Surge ... Yaw) must come before its generalised modes"
+            )
     if list(ds.axis.values) != ["x", "y", "z"] or list(ds.axis_col.values) != ["x", "y", "z"]:
         raise HydroDataError("coordinates 'axis' and 'axis_col' must be ['x', 'y', 'z']")
 

@@ -8,15 +8,15 @@ import xarray as xr
 
 from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import CompiledScene
-from ..hydro import split_dof
+from ..hydro import dof_kinds
 from ..waves import evaluate
 from ._model import LinearModel, linearize
 
 
 def response_amplitudes(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
     """Complex amplitudes xi_hat (nv, n_w) of the generalised displacements from the equilibrium, Re[xi_hat
-    e^{i omega t}], for excitation amplitudes ``coefficients`` (n_h, n_w) [N, N m] at ``omega`` (n_w,) [rad/s]
-    on the hydro DOFs: the exact frequency response of ``model`` [m, rad]."""
+    e^{i omega t}], for excitation amplitudes ``coefficients`` (n_h, n_w) [N, N m, J] at ``omega`` (n_w,) [rad/s]
+    on the hydro DOFs: the exact frequency response of ``model`` [m, rad, 1]."""
     omega = np.asarray(omega, dtype=float)
     if omega.size == 0:
         return np.zeros((model.mass.shape[0], 0), dtype=complex)
@@ -39,12 +39,15 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     Returns
     -------
     Dataset
-        Dimensions ``omega`` (the wave components), ``dof_linear`` / ``dof_angular``, ``pto`` (with ``pto_kind``)
-        and ``time`` when given. Complex amplitudes, Re[X e^{+i omega t}] about the equilibrium:
-        ``displacement_amplitude`` [m] and ``angle_amplitude`` [rad] of the generalised coordinates,
+        Dimensions ``omega`` (the wave components), ``dof_linear`` / ``dof_angular`` / ``dof_generalised`` (the
+        kinds of ``Multibody.velocity_kinds``; a kind no coordinate has gives no dimension), ``pto`` (with
+        ``pto_kind``) and ``time`` when given. Complex amplitudes, Re[X e^{+i omega t}] about the equilibrium:
+        ``displacement_amplitude`` [m], ``angle_amplitude`` [rad] and ``generalised_coordinate_amplitude`` [1] (the
+        bodies' generalised modes) of the generalised coordinates,
         ``pto_angle_amplitude`` [rad] and ``pto_displacement_amplitude`` [m] of the PTO strokes (NaN for PTOs of
-        the other kind, absent for a kind no PTO has), ``excitation_force_amplitude`` [N] and
-        ``excitation_moment_amplitude`` [N m] on the hydro DOFs (``hydro_dof_linear`` / ``hydro_dof_angular``),
+        the other kind, absent for a kind no PTO has), ``excitation_force_amplitude`` [N],
+        ``excitation_moment_amplitude`` [N m] and ``excitation_generalised_force_amplitude`` [J] on the hydro DOFs
+        (``hydro_dof_linear`` / ``hydro_dof_angular`` / ``hydro_dof_generalised``),
         ``wave_amplitude`` of the undisturbed elevation at the origin [m]; ``mean_pto_power`` [W], the exact mean
         absorbed power of each PTO's linear damping c, sum over components of c omega^2 |x_hat|^2 / 2.
         Attributes ``rho`` and ``g`` of the data.
@@ -67,23 +70,25 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     device = compiled.device.model
     amplitudes = response_amplitudes(model, exc.omega, exc.coefficients)  # (nv, n_w)
     stroke = model.pto_jacobian @ amplitudes  # (n_pto, n_w)
-    angular = np.array(device.angular_velocities, dtype=bool)
+    velocity_kinds = np.array(device.velocity_kinds)
     names = np.array(device.velocity_names)
     ptos = [p.name for p in compiled.device.ptos]
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     data: dict[str, tuple] = {"wave_amplitude": (("omega",), _wave_amplitudes(compiled, exc.omega))}
     coords: dict[str, object] = {"omega": exc.omega}
-    rotation = np.array([split_dof(d)[1].lower() in ("roll", "pitch", "yaw") for d in exc.dofs], dtype=bool)
+    hydro_kinds = np.array(dof_kinds(exc.dofs))
     for mask, name, dim in (
-        (~rotation, "excitation_force_amplitude", "hydro_dof_linear"),
-        (rotation, "excitation_moment_amplitude", "hydro_dof_angular"),
+        (hydro_kinds == "linear", "excitation_force_amplitude", "hydro_dof_linear"),
+        (hydro_kinds == "angular", "excitation_moment_amplitude", "hydro_dof_angular"),
+        (hydro_kinds == "generalised", "excitation_generalised_force_amplitude", "hydro_dof_generalised"),
     ):
         if mask.any():
             data[name] = (("omega", dim), exc.coefficients[mask].T)
             coords[dim] = [d for d, m in zip(exc.dofs, mask, strict=True) if m]
     for mask, name, dim in (
-        (~angular, "displacement_amplitude", "dof_linear"),
-        (angular, "angle_amplitude", "dof_angular"),
+        (velocity_kinds == "linear", "displacement_amplitude", "dof_linear"),
+        (velocity_kinds == "angular", "angle_amplitude", "dof_angular"),
+        (velocity_kinds == "generalised", "generalised_coordinate_amplitude", "dof_generalised"),
     ):
         if mask.any():
             data[name] = (("omega", dim), amplitudes[mask].T)
@@ -142,11 +147,12 @@ def _add_time_series(
     omega = compiled.excitation.omega if compiled.excitation is not None else np.zeros(0)
     xi = np.real(evaluate(amplitudes, omega, time)).T  # (n_t, nv)
     rate = np.real(evaluate(1j * omega * amplitudes, omega, time)).T
-    angular = np.array(device.angular_velocities, dtype=bool)
+    kinds = np.array(device.velocity_kinds)
     q = compiled.q0[None] + xi
     for mask, (position, velocity), dim in (
-        (~angular, ("displacement", "velocity"), "dof_linear"),
-        (angular, ("angle", "angular_velocity"), "dof_angular"),
+        (kinds == "linear", ("displacement", "velocity"), "dof_linear"),
+        (kinds == "angular", ("angle", "angular_velocity"), "dof_angular"),
+        (kinds == "generalised", ("generalised_coordinate", "generalised_velocity"), "dof_generalised"),
     ):
         if mask.any():
             data[position] = (("time", dim), q[:, mask])

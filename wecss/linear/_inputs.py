@@ -8,10 +8,8 @@ import numpy as np
 import xarray as xr
 
 from ..compiled import CompiledScene, pto_control_force
-from ..hydro import split_dof
+from ..hydro import dof_kind
 from ._model import LinearModel, linearize
-
-_ROTATIONS = ("roll", "pitch", "yaw")
 
 
 def linear_inputs(result: xr.Dataset, compiled: CompiledScene, model: LinearModel | None = None) -> xr.DataArray:
@@ -61,7 +59,7 @@ def linear_inputs(result: xr.Dataset, compiled: CompiledScene, model: LinearMode
     model = model or linearize(compiled)
     dofs = list(compiled.hydro.dofs)
     ptos = [p.name for p in compiled.device.ptos]
-    needed = ["excitation_force" if split_dof(d)[1].lower() not in _ROTATIONS else "excitation_moment" for d in dofs]
+    needed = [_excitation_variable(result, d)[0] for d in dofs]
     if ptos:
         needed.append("pto_power")
     missing = sorted({name for name in needed if name not in result})
@@ -72,8 +70,7 @@ def linear_inputs(result: xr.Dataset, compiled: CompiledScene, model: LinearMode
         )
     columns = []
     for dof in dofs:
-        angular = split_dof(dof)[1].lower() in _ROTATIONS
-        name, dim = ("excitation_moment", "hydro_dof_angular") if angular else ("excitation_force", "hydro_dof_linear")
+        name, dim = _excitation_variable(result, dof)
         if dof not in result[dim].values:
             raise ValueError(f"hydro DOF {dof!r} of the scene is not in the result's {dim}: another scene's result?")
         columns.append(result[name].sel({dim: dof}).values)
@@ -101,6 +98,17 @@ def linear_inputs(result: xr.Dataset, compiled: CompiledScene, model: LinearMode
             "units": "N, N m",
         },
     )
+
+
+def _excitation_variable(result: xr.Dataset, dof: str) -> tuple[str, str]:
+    """The result's variable and dimension holding the excitation on hydro DOF ``dof``: by its kind (a generalised
+    mode's on ``hydro_dof_generalised`` when the result has that dimension, else with the translations)."""
+    kind = dof_kind(dof)
+    if kind == "angular":
+        return "excitation_moment", "hydro_dof_angular"
+    if kind == "generalised" and "hydro_dof_generalised" in result.dims:
+        return "excitation_generalised_force", "hydro_dof_generalised"
+    return "excitation_force", "hydro_dof_linear"
 
 
 def _by_kind(result: xr.Dataset, rotary: str, linear: str) -> np.ndarray:

@@ -9,9 +9,10 @@ force on every hydro DOF (world axes) and a PTO force per PTO added to the linea
     M xi_ddot = -K xi - C xi_dot + Bw' (F_exc - C_r r) + G' f_pto,     r_dot = A_r r + B_r Bw xi_dot
 
 with M = M*(q0) (A_inf with the simulator's consistency correction), K the static stiffness with its geometric
-part, the moorings' springs and the controller's linear stiffness, C = G' diag(c) G + diag(c_j) + Bw' C_m Bw the
-controller's linear damping, the joints' own losses (``Joint.damping``) and the moorings' dampers C_m, Bw the
-world-frame Jacobian of the hydro DOFs and G the PTO transmissions
+part, the moorings' springs, the generalised modes' structural stiffness and the controller's linear stiffness,
+C = G' diag(c) G + diag(c_j) + Bw' C_m Bw + C_modes the controller's linear damping, the joints' own losses
+(``Joint.damping``), the moorings' dampers C_m and the modes' structural damping, Bw the world-frame Jacobian of
+the hydro DOFs (a generalised mode's row: the rate of its coordinate) and G the PTO transmissions
 at q0. The gyroscopic and Bdot terms are quadratic in the
 velocities and vanish at equilibrium.
 
@@ -49,12 +50,12 @@ if (
 
 
 def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """At the static equilibrium: B (6n, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
+    """At the static equilibrium: B (n_cart, nv), the world-frame Jacobian of the hydro DOFs Bw (n_h, nv), the PTO
     transmissions G (n_pto, nv) and the PTO strokes from their rest positions (n_pto,)."""
     p = compiled.plant
     rot, pos, b, _, _ = kinematics(p, compiled.q0, np.zeros(p.twists.shape[0]))
     stroke, g = pto_strokes(p, compiled.q0, rot, pos, b)
-    return b, world_jacobian(rot, b)[p.hydro_index], g, stroke - p.pto_rest
+    return b, world_jacobian(p, rot, b)[p.hydro_index], g, stroke - p.pto_rest
 
 
 @dataclass(frozen=True)

@@ -1,9 +1,11 @@
-"""Moving Frame Method multibody core: SE(3) helpers, bodies and joints, tree kinematics (B, Bdot, D) and dynamics."""
+"""Moving Frame Method multibody core: SE(3) helpers, bodies (with generalised modes) and joints, tree kinematics
+(B, Bdot, D) and dynamics."""
 
 from ._dynamics import Dynamics as Dynamics
 from ._dynamics import body_mass_matrix as body_mass_matrix
 from ._dynamics import gravity_force as gravity_force
 from ._dynamics import potential_energy as potential_energy
+from ._dynamics import structural_force as structural_force
 from ._hydrostatics import HydroCoupling as HydroCoupling
 from ._kinematics import KinematicState as KinematicState
 from ._kinematics import configuration_rate as configuration_rate
@@ -11,6 +13,7 @@ from ._kinematics import difference as difference
 from ._kinematics import integrate as integrate
 from ._kinematics import kinematics as kinematics
 from ._loads import joint_reactions as joint_reactions
+from ._modes import GeneralisedModes as GeneralisedModes
 from ._mooring import Mooring as Mooring
 from ._mooring import mooring_matrices as mooring_matrices
 from ._pto import PTO as PTO

@@ -4,8 +4,11 @@
     v_dot = M*^-1 (F* - N* v)
 
 Cartesian forces F hold, per body, the world-frame force at the centre of mass followed by the moment
-about the centre of mass in body axes (as the paper's Cartesian velocities). The kinetic energy
-T = 1/2 v' M* v changes at the rate v' F* (the D M B term does no work), which the tests check.
+about the centre of mass in body axes (as the paper's Cartesian velocities), then the generalised force on each
+of its modes [J]. The kinetic energy T = 1/2 v' M* v changes at the rate v' F* (the D M B term does no work),
+which the tests check. The modes' structural stiffness and damping are generalised forces of their own
+(:func:`structural_force`); the rigid motion and the modes are coupled only through the added mass (the
+inertial coupling of a flexible body is neglected, see ``_modes``).
 """
 
 from __future__ import annotations
@@ -19,12 +22,14 @@ from ._tree import Multibody
 
 
 def body_mass_matrix(model: Multibody) -> np.ndarray:
-    """Block-diagonal 6n x 6n rigid-body mass matrix diag(m I_3, J) per body (Eq. 43)."""
-    n = len(model.bodies)
-    out = np.zeros((6 * n, 6 * n))
+    """Block-diagonal (n_cart, n_cart) mass matrix diag(m I_3, J, M_modes) per body (Eq. 43, with the generalised
+    mass of the body's modes [kg m^2]; no inertial coupling between the rigid rows and the modes)."""
+    out = np.zeros((model.n_cart, model.n_cart))
     for i, body in enumerate(model.bodies):
-        out[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = body.mass * np.eye(3)
-        out[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = body.inertia
+        s, n = model.cart_start[i], body.modes.n
+        out[s : s + 3, s : s + 3] = body.mass * np.eye(3)
+        out[s + 3 : s + 6, s + 3 : s + 6] = body.inertia
+        out[s + 6 : s + 6 + n, s + 6 : s + 6 + n] = body.modes.mass
     return out
 
 
@@ -43,9 +48,10 @@ class Dynamics:
     Parameters
     ----------
     model : Multibody
-    added_mass : ndarray (6n, 6n), optional
+    added_mass : ndarray (n_cart, n_cart), optional
         Infinite-frequency added mass in Cartesian coordinates at the centres of mass (all body-to-body
-        couplings), in the paper's per-body order (3 translations, 3 rotations). Default: none.
+        couplings), in the paper's per-body order (3 translations, 3 rotations, then the body's modes).
+        Default: none.
 
     Raises
     ------
@@ -54,14 +60,16 @@ class Dynamics:
     """
 
     def __init__(self, model: Multibody, added_mass: np.ndarray | None = None) -> None:
-        n6 = 6 * len(model.bodies)
+        n_cart = model.n_cart
         self.model = model
         self.rigid_mass = body_mass_matrix(model)
         if added_mass is None:
-            added_mass = np.zeros((n6, n6))
+            added_mass = np.zeros((n_cart, n_cart))
         added_mass = np.asarray(added_mass, dtype=float)
-        if added_mass.shape != (n6, n6):
-            raise ValueError(f"added_mass must be {n6}x{n6} (6 per body); got shape {added_mass.shape}")
+        if added_mass.shape != (n_cart, n_cart):
+            raise ValueError(
+                f"added_mass must be {n_cart}x{n_cart} (6 per body plus its modes); got shape {added_mass.shape}"
+            )
         if not np.allclose(added_mass, added_mass.T, rtol=0, atol=1e-9 * max(1.0, float(np.abs(added_mass).max()))):
             raise ValueError("added_mass must be symmetric")
         self.added_mass = added_mass
@@ -77,7 +85,8 @@ class Dynamics:
         return DynamicsTerms(0.5 * (mass + mass.T), nonlinear, st)
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, force: np.ndarray) -> np.ndarray:
-        """Generalised accelerations v_dot = M*^-1 (B' F - N* v) for Cartesian forces ``force`` (6n,)."""
+        """Generalised accelerations v_dot = M*^-1 (B' F - N* v) for Cartesian forces ``force`` (n_cart,) (add
+        :func:`structural_force` for the modes' stiffness and damping)."""
         t = self.terms(q, v)
         return np.linalg.solve(t.mass, t.state.B.T @ np.asarray(force, dtype=float) - t.nonlinear @ v)
 
@@ -88,10 +97,24 @@ class Dynamics:
 
 
 def gravity_force(model: Multibody, g: float) -> np.ndarray:
-    """Cartesian gravity force (6n,): -m g along world z at each centre of mass, no moment [N]."""
-    out = np.zeros(6 * len(model.bodies))
+    """Cartesian gravity force (n_cart,): -m g along world z at each centre of mass, no moment, none on the modes
+    [N]."""
+    out = np.zeros(model.n_cart)
     for i, body in enumerate(model.bodies):
-        out[6 * i + 2] = -body.mass * g
+        out[model.cart_start[i] + 2] = -body.mass * g
+    return out
+
+
+def structural_force(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> np.ndarray:
+    """Cartesian load (n_cart,) of the modes' structural stiffness and damping: -K xi - C xi_dot on each mode's
+    row (zero elsewhere) [J], with xi the modal coordinates of ``q`` and xi_dot of ``v`` (None: no damping)."""
+    out = np.zeros(model.n_cart)
+    if model.n_modes:
+        xi = np.asarray(q, dtype=float)[model.mode_coordinates]
+        load = -model.mode_stiffness @ xi
+        if v is not None:
+            load -= model.mode_damping @ np.asarray(v, dtype=float)[model.mode_velocities]
+        out[model.mode_rows] = load
     return out
 
 

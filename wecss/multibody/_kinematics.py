@@ -1,7 +1,9 @@
 """Kinematics of the whole tree: body poses, the MFM B-matrix (Eq. 28), its time derivative and D.
 
 Cartesian velocities follow the paper: per body, the world-frame velocity of the centre of mass followed
-by the body-frame angular velocity, X_dot = B(q) v (6 rows per body, in the order of ``Multibody.bodies``).
+by the body-frame angular velocity, X_dot = B(q) v (in the order of ``Multibody.bodies``), then one row per
+generalised mode of the body, the rate of its coordinate: B is the identity on the mode's own column there and
+Bdot is zero (rows at ``Multibody.cart_start``).
 
 Derivation used here (product of exponentials). Each joint has a constant twist xi in the world frame at
 the reference configuration. The displacement of a body from its reference pose is
@@ -14,7 +16,7 @@ B_i = Phi_i S, Phi_i = [[I, -hat(p_i)], [0, R_i^T]]. Time derivatives: d/dt S_c 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -36,12 +38,16 @@ class KinematicState:
         R_WB of each body (body axes in the world frame).
     position : ndarray (n_body, 3)
         p_WBcm_W: centre of mass of each body in the world frame [m].
-    B : ndarray (6 n_body, nv)
-        The MFM B-matrix: rows per body (world CoM velocity, body angular velocity).
-    Bdot : ndarray (6 n_body, nv) or None
+    B : ndarray (n_cart, nv)
+        The MFM B-matrix: rows per body (world CoM velocity, body angular velocity, its modes' rates).
+    Bdot : ndarray (n_cart, nv) or None
         dB/dt along the velocity v.
     angular_velocity : ndarray (n_body, 3) or None
         w_WB_B, body angular velocities in body axes [rad/s].
+    cart_start : tuple of int
+        First Cartesian row of each body (``Multibody.cart_start``).
+    modal : ndarray (n_modes,)
+        The generalised modes' coordinates [1] (``Multibody.mode_names``).
     """
 
     rotation: np.ndarray
@@ -49,15 +55,18 @@ class KinematicState:
     B: np.ndarray
     Bdot: np.ndarray | None = None
     angular_velocity: np.ndarray | None = None
+    cart_start: tuple[int, ...] = ()
+    modal: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def D(self) -> np.ndarray:
-        """Block-diagonal angular-velocity matrix of the MFM (Eq. 44): diag(0, hat(w_B)) per body."""
+        """Block-diagonal angular-velocity matrix of the MFM (Eq. 44): diag(0, hat(w_B)) per body, zero on the rows
+        of generalised modes."""
         if self.angular_velocity is None:
             raise ValueError("D needs the velocity: call kinematics(model, q, v)")
-        n = self.position.shape[0]
-        out = np.zeros((6 * n, 6 * n))
-        for i in range(n):
-            out[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = hat(self.angular_velocity[i])
+        n_cart = self.B.shape[0]
+        out = np.zeros((n_cart, n_cart))
+        for i, s in enumerate(self.cart_start):
+            out[s + 3 : s + 6, s + 3 : s + 6] = hat(self.angular_velocity[i])
         return out
 
 
@@ -137,16 +146,18 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
         iq += joint.nq
         iv += joint.nv
 
-    b_matrix = np.zeros((6 * n, nv))
-    bdot = np.zeros((6 * n, nv)) if v is not None else None
+    n_cart = model.n_cart
+    b_matrix = np.zeros((n_cart, nv))
+    bdot = np.zeros((n_cart, nv)) if v is not None else None
     omega_body = np.zeros((n, 3)) if v is not None else None
     for i in range(n):
+        r0 = model.cart_start[i]
         phi = np.zeros((6, 6))
         phi[:3, :3] = np.eye(3)
         phi[:3, 3:] = -hat(position[i])
         phi[3:, 3:] = rotation[i].T
         s = np.where(chain[i], columns, 0.0)
-        b_matrix[6 * i : 6 * i + 6] = phi @ s
+        b_matrix[r0 : r0 + 6] = phi @ s
         if v is not None:
             assert bdot is not None and omega_body is not None
             xdot = phi @ (s @ v)
@@ -154,14 +165,18 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
             phi_dot = np.zeros((6, 6))
             phi_dot[:3, 3:] = -hat(xdot[:3])
             phi_dot[3:, 3:] = -hat(xdot[3:]) @ rotation[i].T
-            bdot[6 * i : 6 * i + 6] = phi_dot @ s + phi @ np.where(chain[i], columns_dot, 0.0)
-    return KinematicState(rotation, position, b_matrix, bdot, omega_body)
+            bdot[r0 : r0 + 6] = phi_dot @ s + phi @ np.where(chain[i], columns_dot, 0.0)
+    # generalised modes: the rate of the mode's own coordinate (B = identity on its column, Bdot = 0)
+    b_matrix[model.mode_rows, model.mode_velocities] = 1.0
+    return KinematicState(
+        rotation, position, b_matrix, bdot, omega_body, model.cart_start, q[model.mode_coordinates].copy()
+    )
 
 
 def integrate(model: Multibody, q: np.ndarray, dv: np.ndarray) -> np.ndarray:
     """Configuration reached from ``q`` by the velocity increment ``dv`` (v * dt) [joint units].
 
-    Joint coordinates add; a free base moves its centre of mass by ``dv[:3]`` (world) and rotates by
+    Joint and modal coordinates add; a free base moves its centre of mass by ``dv[:3]`` (world) and rotates by
     ``exp(hat(dv[3:6]))`` in body axes, keeping the quaternion on the unit sphere (SO(3) integration).
     """
     q = np.asarray(q, dtype=float).copy()
@@ -176,6 +191,7 @@ def integrate(model: Multibody, q: np.ndarray, dv: np.ndarray) -> np.ndarray:
             q[iq : iq + joint.nq] += dv[iv : iv + joint.nv]
         iq += joint.nq
         iv += joint.nv
+    q[iq:] += dv[iv:]  # the generalised modes
     return q
 
 
@@ -194,12 +210,13 @@ def difference(model: Multibody, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
             out[iv : iv + joint.nv] = q1[iq : iq + joint.nq] - q0[iq : iq + joint.nq]
         iq += joint.nq
         iv += joint.nv
+    out[iv:] = q1[iq:] - q0[iq:]  # the generalised modes
     return out
 
 
 def configuration_rate(model: Multibody, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """dq/dt for velocity ``v``: ``v`` itself for joint coordinates; for a free base, the world velocity of the
-    centre of mass and the quaternion rate 1/2 quat * (0, w_body)."""
+    """dq/dt for velocity ``v``: ``v`` itself for joint and modal coordinates; for a free base, the world velocity
+    of the centre of mass and the quaternion rate 1/2 quat * (0, w_body)."""
     q = np.asarray(q, dtype=float)
     v = np.asarray(v, dtype=float)
     out = np.zeros(model.nq)
@@ -212,4 +229,5 @@ def configuration_rate(model: Multibody, q: np.ndarray, v: np.ndarray) -> np.nda
             out[iq : iq + joint.nq] = v[iv : iv + joint.nv]
         iq += joint.nq
         iv += joint.nv
+    out[iq:] = v[iv:]  # the generalised modes
     return out

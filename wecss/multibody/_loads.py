@@ -29,12 +29,14 @@ def joint_reactions(
     model : Multibody
     q, v, v_dot : ndarray
         Configuration, generalised velocities [m/s, rad/s] and accelerations [m/s^2, rad/s^2].
-    applied : ndarray (6n,)
-        Applied Cartesian loads: world forces at the centres of mass [N], body-frame moments [N m]
-        (everything except the joint loads: gravity, hydrodynamics, and the PTO loads if they are
-        applied as Cartesian loads).
-    total_mass, rigid_mass : ndarray (6n, 6n)
-        Rigid mass plus infinite-frequency added mass, and the rigid mass alone (for the gyroscopic term).
+    applied : ndarray (n_cart,)
+        Applied Cartesian loads: world forces at the centres of mass [N], body-frame moments [N m], the modes'
+        generalised forces [J] (everything except the joint loads: gravity, hydrodynamics, and the PTO loads if
+        they are applied as Cartesian loads).
+    total_mass, rigid_mass : ndarray (n_cart, n_cart)
+        Rigid mass plus infinite-frequency added mass, and the rigid mass alone (for the gyroscopic term). The
+        joints carry the rigid rows' balance (with the added-mass coupling to the modes' accelerations); the modes'
+        own rows are not a joint load (no elastic attachment yet).
 
     Returns
     -------
@@ -51,10 +53,11 @@ def joint_reactions(
     force = np.zeros((n, 3))
     moment_origin = np.zeros((n, 3))  # about the world origin
     for i in range(n):
-        inertia = rigid_mass[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6]
+        s = model.cart_start[i]
+        inertia = rigid_mass[s + 3 : s + 6, s + 3 : s + 6]
         w = st.angular_velocity[i]
-        m_body = need[6 * i + 3 : 6 * i + 6] + np.cross(w, inertia @ w)
-        f = need[6 * i : 6 * i + 3]
+        m_body = need[s + 3 : s + 6] + np.cross(w, inertia @ w)
+        f = need[s : s + 3]
         force[i] = f
         moment_origin[i] = st.rotation[i] @ m_body + np.cross(st.position[i], f)
     for i in reversed(model.order):

@@ -94,22 +94,22 @@ class Mooring:
 
 
 def mooring_matrices(model: Multibody, moorings: tuple[Mooring, ...]) -> tuple[np.ndarray, np.ndarray]:
-    """Stiffness and damping (6n, 6n) of ``moorings`` in the model's Cartesian coordinates (6 per body, about
-    the centres of mass, world axes) [SI].
+    """Stiffness and damping (n_cart, n_cart) of ``moorings`` in the model's Cartesian coordinates (the rigid rows
+    of each body, about the centres of mass, world axes; none on the modes) [SI].
 
     Raises
     ------
     ValueError
         If a mooring names a body the model does not have.
     """
-    n6 = 6 * len(model.bodies)
-    stiffness, damping = np.zeros((n6, n6)), np.zeros((n6, n6))
+    n_cart = model.n_cart
+    stiffness, damping = np.zeros((n_cart, n_cart)), np.zeros((n_cart, n_cart))
     for mooring in moorings:
         if mooring.body not in model.body_names:
             raise ValueError(f"mooring: unknown body {mooring.body!r}; the model has {', '.join(model.body_names)}")
         i = list(model.body_names).index(mooring.body)
         for matrix, values in ((stiffness, mooring.stiffness), (damping, mooring.damping)):
             for dof, value in values.items():
-                k = 6 * i + RIGID_BODY_DOFS.index(dof)
+                k = model.cart_start[i] + RIGID_BODY_DOFS.index(dof)
                 matrix[k, k] += value
     return stiffness, damping

@@ -149,7 +149,8 @@ class ActuatorPTO:
         i = model.body_names.index(body)
         r_body = point - model.bodies[i].center_of_mass  # body axes are the world axes at the reference pose
         position = state.position[i] + state.rotation[i] @ r_body
-        jac = state.B[6 * i : 6 * i + 3] - state.rotation[i] @ hat(r_body) @ state.B[6 * i + 3 : 6 * i + 6]
+        s = model.cart_start[i]
+        jac = state.B[s : s + 3] - state.rotation[i] @ hat(r_body) @ state.B[s + 3 : s + 6]
         return position, jac
 
     def stroke(self, model: Multibody, q: np.ndarray, state: KinematicState) -> tuple[float, np.ndarray]:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._dynamics import gravity_force
+from ._dynamics import gravity_force, structural_force
 from ._hydrostatics import HydroCoupling
 from ._kinematics import integrate, kinematics
 from ._pto import PTO
@@ -28,7 +28,8 @@ are accurate to about 1e-10 of the static loads)."""
 
 @dataclass(frozen=True, eq=False)
 class StaticModel:
-    """Gravity, buoyancy, hydrostatic stiffness and PTO springs (with preload) of a model at rest.
+    """Gravity, buoyancy, hydrostatic stiffness, the modes' structural stiffness and PTO springs (with preload) of a
+    model at rest.
 
     Parameters
     ----------
@@ -50,11 +51,14 @@ class StaticModel:
     preload: Sequence[float] | None = None
 
     def generalized_force(self, q: np.ndarray) -> np.ndarray:
-        """Static generalised force F*(q) = B' F + sum of PTO spring forces [N, N m]."""
+        """Static generalised force F*(q) = B' F + sum of PTO spring forces [N, N m], with the modes' structural
+        stiffness [J]."""
         st = kinematics(self.model, q)
         force = gravity_force(self.model, self.g)
         if self.coupling is not None:
             force = force + self.coupling.hydrostatic_force(self.model, st)
+        if self.model.n_modes:
+            force = force + structural_force(self.model, q)
         out = st.B.T @ force
         preload = self.preload if self.preload is not None else [0.0] * len(self.ptos)
         for pto, f0 in zip(self.ptos, preload, strict=True):

@@ -4,6 +4,13 @@ Everything is described in the world frame at the reference configuration (all c
 frames sit at the centres of mass with axes parallel to the world axes, joint axes and points are world
 vectors. This is the product-of-exponentials description of a kinematic tree (each joint a constant
 twist), from which the MFM's B-matrix follows (see ``_kinematics``).
+
+Cartesian rows. A body has its six rigid rows (CoM velocity x, y, z in world axes, then the body angular
+velocity) followed by one row per generalised mode (``_modes``); the model's Cartesian vectors (velocities X,
+loads F, the mass matrix) hold the bodies' rows one body after the other. ``Multibody.cart_start`` and
+``cart_size`` say where each body's rows are and ``cart_body``, ``cart_axis`` which body and axis each row is
+(0-5 rigid, 6.. the body's modes): code outside the model goes through them, never through 6 rows per body.
+Generalised coordinates: the joints' (in topological order), then the modes of every body (in the bodies' order).
 """
 
 from __future__ import annotations
@@ -11,9 +18,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
+
+from ._modes import NO_MODES, GeneralisedModes
 
 JointKind = Literal["fixed", "planar", "free", "revolute", "prismatic", "weld"]
 BASE_KINDS: tuple[str, ...] = ("fixed", "planar", "free")
@@ -46,11 +55,15 @@ class Body:
         Position of the centre of mass at the reference configuration, in the world frame [m]. The body frame sits here.
     hydro_body : str or None
         Name of the body in the hydrodynamic database that acts on this body (None: no hydrodynamics).
+    modes : GeneralisedModes, or its device-spec form (see ``GeneralisedModes.from_spec``), optional
+        The body's generalised modes beyond its six rigid-body DOFs (default none: a rigid body). Inertial
+        coupling between the rigid motion and the modes is neglected (a later issue adds the floating frame's
+        invariants); see ``wecss.multibody._modes``.
 
     Raises
     ------
     ValueError
-        On a non-positive mass, a non-symmetric or indefinite inertia, or a malformed vector.
+        On a non-positive mass, a non-symmetric or indefinite inertia, a malformed vector, or bad modes.
     """
 
     name: str
@@ -58,6 +71,7 @@ class Body:
     inertia: np.ndarray
     center_of_mass: np.ndarray
     hydro_body: str | None = None
+    modes: GeneralisedModes = NO_MODES
 
     def __post_init__(self) -> None:
         if not self.name or "__" in self.name:
@@ -78,6 +92,12 @@ class Body:
         object.__setattr__(self, "mass", float(self.mass))
         object.__setattr__(self, "inertia", inertia)
         object.__setattr__(self, "center_of_mass", _vector(self.center_of_mass, f"body {self.name!r} center_of_mass"))
+        modes: Any = self.modes
+        if not isinstance(modes, GeneralisedModes) or modes.body != self.name:
+            modes = GeneralisedModes.from_spec(self.name, modes)
+            if modes.n:
+                modes = GeneralisedModes(modes.names, modes.mass, modes.stiffness, modes.damping, self.name)
+        object.__setattr__(self, "modes", modes)
 
 
 @dataclass(frozen=True, eq=False)
@@ -217,12 +237,16 @@ class Multibody:
     parent : tuple of int
         Index of each body's parent (-1 for the base).
     coordinate_names, velocity_names : tuple of str
-        ``<joint>__<label>``; a free base has 7 coordinates (``x, y, z, qw, qx, qy, qz``) and 6 velocities.
+        ``<joint>__<label>``; a free base has 7 coordinates (``x, y, z, qw, qx, qy, qz``) and 6 velocities; then
+        the generalised modes, ``<body>__<mode>``, one coordinate and one velocity each.
+    cart_start, cart_size : tuple of int
+        Per body, its first Cartesian row and its number of rows (6 plus its modes); ``n_cart`` rows in all.
 
     Raises
     ------
     ValueError
-        On duplicate names, unknown bodies, a body without a joint or with two, several base joints, or a cycle.
+        On duplicate names (bodies, joints, generalised coordinates), unknown bodies, a body without a joint or
+        with two, several base joints, or a cycle.
     """
 
     bodies: tuple[Body, ...]
@@ -272,6 +296,107 @@ class Multibody:
         object.__setattr__(self, "order", tuple(order))
         object.__setattr__(self, "parent", tuple(parent))
         object.__setattr__(self, "joint_of", tuple(joint_of))
+        velocities = self.velocity_names
+        repeated = sorted({v for v in velocities if velocities.count(v) > 1})
+        if repeated:
+            raise ValueError(
+                f"generalised coordinates {repeated} are named twice (a joint's <joint>__<label> and a body's "
+                "<body>__<mode>); rename the joint or the mode"
+            )
+
+    # --- Cartesian rows ----------------------------------------------------------------------------
+    @cached_property
+    def cart_size(self) -> tuple[int, ...]:
+        """Number of Cartesian rows of each body (model order): 6 rigid plus one per generalised mode."""
+        return tuple(6 + b.modes.n for b in self.bodies)
+
+    @cached_property
+    def cart_start(self) -> tuple[int, ...]:
+        """First Cartesian row of each body (model order)."""
+        return tuple(int(x) for x in np.concatenate([[0], np.cumsum(self.cart_size)[:-1]]))
+
+    @property
+    def n_cart(self) -> int:
+        """Number of Cartesian rows of the model."""
+        return sum(self.cart_size)
+
+    @cached_property
+    def cart_body(self) -> tuple[int, ...]:
+        """Body index of each Cartesian row."""
+        return tuple(i for i, size in enumerate(self.cart_size) for _ in range(size))
+
+    @cached_property
+    def cart_axis(self) -> tuple[int, ...]:
+        """Axis of each Cartesian row within its body: 0-2 the CoM velocity (world x, y, z), 3-5 the body angular
+        velocity (body axes), 6.. the body's generalised modes in their order."""
+        return tuple(a for size in self.cart_size for a in range(size))
+
+    @property
+    def cartesian_labels(self) -> tuple[str, ...]:
+        """``<body>__<Dof>`` of each Cartesian row (Surge ... Yaw, then the mode names), for messages."""
+        rigid = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+        return tuple(f"{b.name}__{d}" for b in self.bodies for d in (*rigid, *b.modes.names))
+
+    # --- generalised modes -------------------------------------------------------------------------
+    @property
+    def n_modes(self) -> int:
+        """Number of generalised modes of all bodies."""
+        return sum(b.modes.n for b in self.bodies)
+
+    @property
+    def mode_names(self) -> tuple[str, ...]:
+        """Generalised coordinates of the modes, ``<body>__<mode>``, in the bodies' order."""
+        return tuple(f"{b.name}__{m}" for b in self.bodies for m in b.modes.names)
+
+    @property
+    def mode_rows(self) -> np.ndarray:
+        """Cartesian row of each mode (n_modes,) (int)."""
+        return np.array(
+            [
+                a + 6
+                for i, b in enumerate(self.bodies)
+                for a in range(self.cart_start[i], self.cart_start[i] + b.modes.n)
+            ],
+            dtype=np.int64,
+        )
+
+    @property
+    def mode_velocities(self) -> np.ndarray:
+        """Index in the generalised velocities of each mode (n_modes,): after the joints' velocities."""
+        first = sum(j.nv for j in self.joints)
+        return np.arange(first, first + self.n_modes, dtype=np.int64)
+
+    @property
+    def mode_coordinates(self) -> np.ndarray:
+        """Index in the generalised coordinates of each mode (n_modes,): after the joints' coordinates."""
+        first = sum(j.nq for j in self.joints)
+        return np.arange(first, first + self.n_modes, dtype=np.int64)
+
+    def _mode_blocks(self, field: str) -> np.ndarray:
+        out = np.zeros((self.n_modes, self.n_modes))
+        k = 0
+        for body in self.bodies:
+            n = body.modes.n
+            out[k : k + n, k : k + n] = getattr(body.modes, field)
+            k += n
+        return out
+
+    @property
+    def mode_mass(self) -> np.ndarray:
+        """Generalised mass of the modes (n_modes, n_modes), block diagonal by body [kg m^2]."""
+        return self._mode_blocks("mass")
+
+    @property
+    def mode_stiffness(self) -> np.ndarray:
+        """Structural stiffness of the modes (n_modes, n_modes), block diagonal by body [N m]: the generalised
+        force -K xi on the modal coordinates xi."""
+        return self._mode_blocks("stiffness")
+
+    @property
+    def mode_damping(self) -> np.ndarray:
+        """Structural damping of the modes (n_modes, n_modes), block diagonal by body [N m s]: the generalised
+        force -C xi_dot."""
+        return self._mode_blocks("damping")
 
     # --- sizes and names -------------------------------------------------------------------------
     @property
@@ -286,49 +411,60 @@ class Multibody:
 
     @property
     def velocity_names(self) -> tuple[str, ...]:
-        """Generalised velocity names, ``<joint>__<label>``."""
-        return tuple(f"{j.name}__{lab}" for j in self.ordered_joints for lab in j.labels)
+        """Generalised velocity names, ``<joint>__<label>``, then the modes' ``<body>__<mode>``."""
+        return tuple(f"{j.name}__{lab}" for j in self.ordered_joints for lab in j.labels) + self.mode_names
+
+    @property
+    def velocity_kinds(self) -> tuple[str, ...]:
+        """For each generalised velocity its kind: ``"angular"`` (a rotation: revolute joints, the rotations of
+        planar and free bases; [rad], [rad/s], [N m]), ``"linear"`` (a translation; [m], [m/s], [N]) or
+        ``"generalised"`` (a body's generalised mode: coordinate [1], rate [1/s], acceleration [1/s^2], force [J],
+        mass [kg m^2]; see ``wecss.multibody._modes``). The kinds of ``wecss.hydro.DOF_KINDS``."""
+        out: list[str] = []
+        for joint in self.ordered_joints:
+            if joint.kind == "revolute":
+                out.append("angular")
+            elif joint.kind == "planar":
+                out += ["linear", "linear", "angular"]
+            elif joint.kind == "free":
+                out += ["linear"] * 3 + ["angular"] * 3
+            else:
+                out += ["linear"] * joint.nv
+        return tuple(out) + ("generalised",) * self.n_modes
 
     @property
     def angular_velocities(self) -> tuple[bool, ...]:
-        """For each generalised velocity, whether it is a rotation [rad/s] rather than a translation [m/s]:
-        revolute joints and the rotations of planar and free bases."""
-        out: list[bool] = []
-        for joint in self.ordered_joints:
-            if joint.kind == "revolute":
-                out.append(True)
-            elif joint.kind == "planar":
-                out += [False, False, True]
-            elif joint.kind == "free":
-                out += [False] * 3 + [True] * 3
-            else:
-                out += [False] * joint.nv
-        return tuple(out)
+        """For each generalised velocity, whether it is a rotation [rad/s] (``velocity_kinds`` "angular"): revolute
+        joints and the rotations of planar and free bases. False for translations and generalised modes (see
+        ``velocity_kinds`` to tell those apart)."""
+        return tuple(kind == "angular" for kind in self.velocity_kinds)
 
     @property
     def coordinate_names(self) -> tuple[str, ...]:
-        """Generalised coordinate names (a free base has x, y, z, qw, qx, qy, qz)."""
+        """Generalised coordinate names (a free base has x, y, z, qw, qx, qy, qz), then the modes'."""
         out: list[str] = []
         for j in self.ordered_joints:
             labels = ("x", "y", "z", "qw", "qx", "qy", "qz") if j.kind == "free" else j.labels
             out.extend(f"{j.name}__{lab}" for lab in labels)
-        return tuple(out)
+        return tuple(out) + self.mode_names
 
     @property
     def nv(self) -> int:
-        """Number of generalised velocities (degrees of freedom)."""
-        return sum(j.nv for j in self.joints)
+        """Number of generalised velocities (degrees of freedom): the joints' and the modes'."""
+        return sum(j.nv for j in self.joints) + self.n_modes
 
     @property
     def joint_damping(self) -> np.ndarray:
         """The joints' own viscous damping per generalised velocity (nv,), in the order of ``velocity_names``
-        [N m s/rad or N s/m]: the generalised force -diag(joint_damping) v (zero on base joints)."""
-        return np.array([j.damping for j in self.ordered_joints for _ in j.labels], dtype=float)
+        [N m s/rad or N s/m]: the generalised force -diag(joint_damping) v (zero on base joints and on the modes,
+        whose damping is ``mode_damping``)."""
+        joints = [j.damping for j in self.ordered_joints for _ in j.labels]
+        return np.array(joints + [0.0] * self.n_modes, dtype=float)
 
     @property
     def nq(self) -> int:
-        """Number of configuration coordinates."""
-        return sum(j.nq for j in self.joints)
+        """Number of configuration coordinates: the joints' and the modes'."""
+        return sum(j.nq for j in self.joints) + self.n_modes
 
     def body(self, name: str) -> Body:
         """The body called ``name``."""

@@ -51,12 +51,8 @@ iterations per step; at 1 and above the iteration diverges."""
 def split_added_mass(p: Plant) -> tuple[Plant, np.ndarray]:
     """The plant with the rigid mass alone on its active rows, and the added mass A_inf on them (m, m) [kg, kg m,
     kg m^2] (the difference of the total and the rigid mass matrices)."""
-    rigid = np.zeros_like(p.total_mass)
-    for i, (m, inertia) in enumerate(zip(p.mass, p.inertia, strict=True)):
-        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = m * np.eye(3)
-        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = inertia
     rows = np.ix_(p.active, p.active)
-    rigid_active = np.ascontiguousarray(rigid[rows])
+    rigid_active = np.ascontiguousarray(p.rigid_mass[rows])
     return p._replace(active_mass=rigid_active), np.ascontiguousarray(p.active_mass - rigid_active)
 
 

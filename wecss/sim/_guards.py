@@ -240,16 +240,17 @@ def unrestrained_directions(compiled: CompiledScene) -> np.ndarray:
     restoring force (along a null vector of the static stiffness, moorings and PTO springs included), else 0.0."""
     b, _, _, _ = equilibrium_maps(compiled)
     k = compiled.stiffness
-    n = b.shape[0] // 6
+    starts = compiled.plant.cart_start
+    n = starts.size
     if k.size == 0:
         return np.zeros((n, 2))
     _, values, vt = np.linalg.svd(k)
     free = vt[values <= FREE_DIRECTION_TOL * max(float(values[0]), 1e-300)]
-    motion = b @ free.T  # Cartesian motion along each free direction (6n, n_free)
+    motion = b @ free.T  # Cartesian motion along each free direction (n_cart, n_free)
     out = np.zeros((n, 2))
     for i in range(n):
         for axis in range(2):
-            out[i, axis] = float(np.any(np.abs(motion[6 * i + axis]) > 1e-9))
+            out[i, axis] = float(np.any(np.abs(motion[starts[i] + axis]) > 1e-9))
     return out
 
 

@@ -1,5 +1,5 @@
 """How a result lays out a device's columns: the kind of each generalised velocity and hydrodynamic DOF (a
-translation, a rotation or a generalised mode: ``wecss.outputs.DOF_KINDS``), the order in which the runs store the
+translation, a rotation or a generalised mode: ``wecss.constants.DOF_KINDS``), the order in which the runs store the
 forces on the hydrodynamic DOFs, and the PTOs' kinds."""
 
 from __future__ import annotations
@@ -7,20 +7,18 @@ from __future__ import annotations
 import numpy as np
 
 from ..compiled import CompiledScene
-from ..hydro import split_dof
-
-_ROTATIONS = ("roll", "pitch", "yaw")
+from ..constants import DOF_KINDS
+from ..hydro import dof_kinds, split_dof
 
 
 def velocity_kinds(compiled: CompiledScene) -> np.ndarray:
     """The kind of each generalised velocity (n_v,): "linear", "angular" or "generalised"."""
-    angular = np.array(compiled.device.model.angular_velocities, dtype=bool)
-    return np.where(angular, "angular", "linear")
+    return np.array(compiled.device.model.velocity_kinds)
 
 
 def hydro_kinds(compiled: CompiledScene) -> np.ndarray:
     """The kind of each hydrodynamic DOF in the database's order (n_h,): "linear", "angular" or "generalised"."""
-    return np.array(["angular" if split_dof(d)[1].lower() in _ROTATIONS else "linear" for d in compiled.hydro.dofs])
+    return np.array(dof_kinds(compiled.hydro.dofs))
 
 
 def natural_hydro_order(compiled: CompiledScene) -> np.ndarray:
@@ -40,7 +38,7 @@ def grouped_hydro_order(compiled: CompiledScene) -> np.ndarray:
     that each kind is one block of columns (a view, no copy, in the result)."""
     natural = natural_hydro_order(compiled)
     kinds = hydro_kinds(compiled)[natural]
-    return np.concatenate([natural[kinds == kind] for kind in ("linear", "angular", "generalised")]).astype(np.int64)
+    return np.concatenate([natural[kinds == kind] for kind in DOF_KINDS]).astype(np.int64)
 
 
 def rotary_ptos(compiled: CompiledScene) -> np.ndarray:

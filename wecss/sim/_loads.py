@@ -58,11 +58,10 @@ class Loads:
 
 
 def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, force: np.ndarray):
-    """World Cartesian loads (6n,) of the PTO forces ``force`` (n_pto,) and each PTO's load on its two ends."""
+    """World Cartesian loads (n_cart,) of the PTO forces ``force`` (n_pto,) and each PTO's load on its two ends."""
     p = compiled.plant
     model = compiled.device.model
-    n = pos.shape[0]
-    cart = np.zeros(6 * n)
+    cart = np.zeros(p.cart_body.size)
     n_pto = force.shape[0]
     end_force = np.zeros((n_pto, 2, 3))
     end_moment = np.zeros((n_pto, 2, 3))
@@ -100,8 +99,9 @@ def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, fo
             if i < 0:
                 end_force[k, e] = end_moment[k, e] = 0.0
                 continue
-            cart[6 * i : 6 * i + 3] += end_force[k, e]
-            cart[6 * i + 3 : 6 * i + 6] += end_moment[k, e] + np.cross(points[k, e] - pos[i], end_force[k, e])
+            s = p.cart_start[i]
+            cart[s : s + 3] += end_force[k, e]
+            cart[s + 3 : s + 6] += end_moment[k, e] + np.cross(points[k, e] - pos[i], end_force[k, e])
     return cart, end_force, end_moment, bodies, points
 
 
@@ -124,12 +124,8 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
     """
     p = compiled.plant
     model = compiled.device.model
-    n = len(model.bodies)
     n_t, n_j, n_pto = q.shape[0], len(model.joints), len(compiled.device.ptos)
-    rigid = np.zeros((6 * n, 6 * n))
-    for i in range(n):
-        rigid[6 * i : 6 * i + 3, 6 * i : 6 * i + 3] = p.mass[i] * np.eye(3)
-        rigid[6 * i + 3 : 6 * i + 6, 6 * i + 3 : 6 * i + 6] = p.inertia[i]
+    rigid, start, modes = p.rigid_mass, p.cart_start, p.cart_column[p.mode_row]
     zj, zp = (n_t, n_j, 3), (n_t, n_pto, 2, 3)
     out = Loads(
         np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zj), np.zeros(zp), np.zeros(zp), 0.0, np.zeros((n_t, 0, 6))
@@ -144,10 +140,12 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
     for t in range(n_t):
         qq, vv = np.ascontiguousarray(q[t]), np.ascontiguousarray(v[t])
         rot, pos, b, bdot, omega = kinematics(p, qq, vv)
-        own = hydrostatic_force(p, rot, pos)  # everything but the joints and the PTOs, world axes
+        own = hydrostatic_force(p, qq, rot, pos)  # everything but the joints and the PTOs, world axes
         own[p.hydro_index] += hydro[t]
         if moored:  # the moorings' dampers (their springs are in the hydrostatic force)
             own[p.hydro_index] -= p.mooring_damping @ hydro_velocity(p, qq, vv)
+        if modes.size:  # the modes' structural damping (their stiffness is in the hydrostatic force)
+            own[p.mode_row] -= p.mode_damping @ vv[modes]
         x, xd, f = pto[0][t], pto[1][t], pto[2][t]
         force = f + end_stop_force(p, x, xd) if n_pto else np.zeros(0)
         cart, out.pto_body_force[t], out.pto_body_moment[t], pto_bodies, pto_points = _pto_cartesian(
@@ -155,32 +153,32 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         )
         world = own + cart
         applied = world.copy()  # world forces, body-axis moments (the convention of B and joint_reactions)
-        for i in range(n):
-            applied[6 * i + 3 : 6 * i + 6] = rot[i].T @ world[6 * i + 3 : 6 * i + 6]
+        for i, s in enumerate(start):
+            applied[s + 3 : s + 6] = rot[i].T @ world[s + 3 : s + 6]
         f_j, m_j = joint_reactions(model, qq, vv, a[t], applied, p.total_mass, rigid)
         out.joint_force[t], out.joint_moment[t] = f_j, m_j
         for k, i in enumerate(child_of_joint):
             out.joint_force_local[t, k] = rot[i].T @ f_j[k]
             out.joint_moment_local[t, k] = rot[i].T @ m_j[k]
         # closure on the free directions: B' ((M + A_inf)(B a + Bdot v) + gyroscopic - applied) = 0
-        gyro = np.zeros(6 * n)
-        for i in range(n):
-            gyro[6 * i + 3 : 6 * i + 6] = np.cross(omega[i], p.inertia[i] @ omega[i])
+        gyro = np.zeros(p.cart_body.size)
+        for i, s in enumerate(start):
+            gyro[s + 3 : s + 6] = np.cross(omega[i], p.inertia[i] @ omega[i])
         acc = b @ a[t] + bdot @ vv
         inertia = p.total_mass @ acc + gyro
         balance = b.T @ (inertia - applied)
         worst = max(worst, float(np.max(np.abs(balance), initial=0.0)))
-        scale = max(scale, float(np.max(np.abs(world_jacobian(rot, b).T @ world), initial=0.0)))
+        scale = max(scale, float(np.max(np.abs(world_jacobian(p, rot, b).T @ world), initial=0.0)))
         for i in carriers:
             loads = _body_point_loads(compiled, i, rot, pos, f_j, m_j, (out.pto_body_force[t], out.pto_body_moment[t]),
                                       pto_bodies, pto_points)  # fmt: skip
-            r = rot[i]
-            own_force = r.T @ (own[6 * i : 6 * i + 3] - inertia[6 * i : 6 * i + 3])
-            own_moment = r.T @ own[6 * i + 3 : 6 * i + 6] - inertia[6 * i + 3 : 6 * i + 6]
+            r, s = rot[i], start[i]
+            own_force = r.T @ (own[s : s + 3] - inertia[s : s + 3])
+            own_moment = r.T @ own[s + 3 : s + 6] - inertia[s + 3 : s + 6]
             loads.append((model.bodies[i].center_of_mass, own_force, own_moment))
             pts, frc, mom = (np.array(c) for c in zip(*loads, strict=True))
-            gathered[i].append([pts, frc, mom, r.T @ gravity, r.T @ acc[6 * i : 6 * i + 3],
-                                acc[6 * i + 3 : 6 * i + 6], omega[i]])  # fmt: skip
+            gathered[i].append([pts, frc, mom, r.T @ gravity, r.T @ acc[s : s + 3], acc[s + 3 : s + 6],
+                                omega[i]])  # fmt: skip
     out.closure = worst / scale if scale > 0 else worst
     if carriers and n_t:
         histories = {i: BodyHistory(*(np.array(col) for col in zip(*gathered[i], strict=True))) for i in carriers}

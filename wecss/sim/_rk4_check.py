@@ -53,7 +53,7 @@ def _mechanical_eigenvalues(compiled: CompiledScene, q: np.ndarray) -> np.ndarra
     p = compiled.plant
     nv = p.twists.shape[0]
     rot, pos, b, _, _ = kinematics(p, q, np.zeros(nv))
-    bw = world_jacobian(rot, b)[p.hydro_index]
+    bw = world_jacobian(p, rot, b)[p.hydro_index]
     _, g = pto_strokes(p, q, rot, pos, b)
     mass = b.T @ p.total_mass @ b
     damping = linear_damping(p, g, bw)

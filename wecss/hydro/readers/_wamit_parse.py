@@ -1,8 +1,9 @@
 """Text parsing of WAMIT output files: the ``.out`` report and the numeric ``.1``, ``.2``/``.3``, ``.hst``, ``.mmx``.
 
 Everything here returns values as WAMIT writes them: non-dimensional (length scale ULEN, rho, g), with
-mode indices 1..6*n_body turned into 0-based positions. Dimensions, units and the wecss schema are the
-business of :mod:`wecss.hydro.readers.wamit`.
+mode indices 1..N turned into 0-based positions. WAMIT numbers the modes of all bodies in one sequence: body k has
+6 rigid-body modes and then its NEWMDS(k) generalised modes, so N = sum over bodies of 6 + NEWMDS(k).
+Dimensions, units and the wecss schema are the business of :mod:`wecss.hydro.readers.wamit`.
 
 Coefficient tables are parsed in bulk (all rows of all frequencies joined and converted by numpy at once);
 only when that fails are the lines walked one by one, to name the file and line at fault.
@@ -47,10 +48,11 @@ class BodyParameters:
 
 @dataclass(frozen=True)
 class OutFile:
-    """The parsed ``.out`` report (coefficients non-dimensional, modes 0-based, N = 6 * n_body).
+    """The parsed ``.out`` report (coefficients non-dimensional, modes 0-based, N = sum of 6 + NEWMDS(k)).
 
     ``periods`` [s] are the finite wave periods in file order; the matrices follow that order.
-    ``radiation_modes`` and ``excitation_modes`` flag the modes that appear in the tables.
+    ``radiation_modes`` and ``excitation_modes`` flag the modes that appear in the tables;
+    ``generalised_modes`` holds NEWMDS(k) per body (the counts given to :func:`read_out`).
     """
 
     path: Path
@@ -69,6 +71,18 @@ class OutFile:
     excitation: np.ndarray | None
     radiation_modes: np.ndarray
     excitation_modes: np.ndarray
+    generalised_modes: tuple[int, ...] = ()
+
+    @property
+    def mode_start(self) -> np.ndarray:
+        """0-based index of each body's first mode (its Surge) in WAMIT's sequence of modes."""
+        sizes = [6 + m for m in self.generalised_modes] or [6] * len(self.bodies)
+        return np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int)
+
+    @property
+    def n_modes(self) -> int:
+        """N, the number of modes of all bodies."""
+        return sum(6 + m for m in self.generalised_modes) if self.generalised_modes else 6 * len(self.bodies)
 
 
 def _error(path: Path, line: int, message: str) -> WamitFormatError:
@@ -145,8 +159,9 @@ def _mode_indices(
             raise _error(
                 path,
                 int(line_numbers[k]),
-                f"mode index {col[k]:g} in the {what} is outside 1..{n_modes} (6 per body); "
-                "generalised modes (NEWMDS) are not supported",
+                f"mode index {col[k]:g} in the {what} is outside 1..{n_modes} (6 per body plus its generalised "
+                "modes); generalised modes (NEWMDS) need their number per body: keep the run's .cfg beside the .out "
+                "or pass mode_names",
             )
         out.append(idx - 1)
     return tuple(out)
@@ -158,7 +173,7 @@ def _line_numbers(spans: Sequence[tuple[int, int]]) -> np.ndarray:
     return np.concatenate([np.arange(s, e) for s, e in spans])
 
 
-def read_out(path: Path, excitation: str = "diffraction") -> OutFile:
+def read_out(path: Path, excitation: str = "diffraction", generalised_modes: dict[int, int] | None = None) -> OutFile:
     """Parse a WAMIT ``.out`` file.
 
     Parameters
@@ -167,6 +182,8 @@ def read_out(path: Path, excitation: str = "diffraction") -> OutFile:
         The ``.out`` file.
     excitation : {"diffraction", "haskind"}
         Which exciting-force tables to read.
+    generalised_modes : dict of int to int, optional
+        NEWMDS(k) by 1-based body number (bodies left out have none); default: no generalised modes.
 
     Raises
     ------
@@ -335,7 +352,12 @@ def read_out(path: Path, excitation: str = "diffraction") -> OutFile:
         where = period_lines[missing[0]] if missing else period_lines[0]
         raise _error(path, where, "each finite wave period needs one 'ADDED-MASS AND DAMPING COEFFICIENTS' table")
 
-    n_modes = 6 * len(bodies)
+    per_body = dict(generalised_modes or {})
+    beyond = sorted(k for k in per_body if not 1 <= k <= len(bodies))
+    if beyond:
+        raise WamitFormatError(f"{path}: generalised modes are given for body {beyond[0]}; the run has {len(bodies)}")
+    generalised = tuple(int(per_body.get(k + 1, 0)) for k in range(len(bodies)))
+    n_modes = sum(6 + m for m in generalised)
     n_per = len(periods)
 
     rows = parse_rows(path, lines, ab_spans, 4, "I J A(I,J) B(I,J)")
@@ -398,6 +420,7 @@ def read_out(path: Path, excitation: str = "diffraction") -> OutFile:
         excitation=excitation_array,
         radiation_modes=radiation_modes,
         excitation_modes=excitation_modes,
+        generalised_modes=generalised,
     )
 
 
@@ -449,8 +472,9 @@ def _spans(indices: np.ndarray) -> list[tuple[int, int]]:
     return [(int(s), int(e)) for s, e in zip(starts, ends, strict=True)]
 
 
-def read_mmx_mass(path: Path, n_bodies: int) -> list[np.ndarray]:
-    """The 6x6 ``MASS(I,J)/RHO`` matrix of each body from a ``.mmx`` file (body coordinates, about XBODY).
+def read_mmx_mass(path: Path, n_bodies: int, generalised_modes: Sequence[int] = ()) -> list[np.ndarray]:
+    """The 6x6 rigid-body block of the ``MASS(I,J)/RHO`` matrix of each body from a ``.mmx`` file (body coordinates,
+    about XBODY); a body with ``generalised_modes[k]`` modes may list indices up to 6 + that number.
 
     Raises
     ------
@@ -467,10 +491,12 @@ def read_mmx_mass(path: Path, n_bodies: int) -> list[np.ndarray]:
                 start = head + 1
                 end = _end_of_rows(lines, start)
                 rows = parse_rows(path, lines, [(start, end)], 3, "I J MASS(I,J)/RHO")
-                mi, mj = _mode_indices(path, rows[:, :2].T, _line_numbers([(start, end)]), 6, "mass matrix")
-                matrix = np.zeros((6, 6))
+                k = len(matrices)
+                size = 6 + (int(generalised_modes[k]) if k < len(generalised_modes) else 0)
+                mi, mj = _mode_indices(path, rows[:, :2].T, _line_numbers([(start, end)]), size, "mass matrix")
+                matrix = np.zeros((size, size))
                 matrix[mi, mj] = rows[:, 2]
-                matrices.append(matrix)
+                matrices.append(matrix[:6, :6])
                 i = end
                 continue
         i += 1

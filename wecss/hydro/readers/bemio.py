@@ -1,15 +1,17 @@
 """Read a BEMIO / WEC-Sim ``.h5`` hydrodynamic file into the wecss schema (needs the ``h5`` extra: h5py).
 
 Layout (as h5py sees it; WEC-Sim's MATLAB ``writeBEMIOH5`` and the older Python ``bemio`` give the same
-array orientation; N bodies, n_f frequencies, n_h headings, rows of body b = its 6 DOFs)::
+array orientation; n_f frequencies, n_h headings, rows of body b = its n_b = 6 + NEWMDS DOFs, N their sum over the
+bodies: WAMIT's one sequence of modes, each body's rigid modes and then its generalised ones)::
 
     /simulation_parameters/  rho, g, w (n_f) [rad/s], T (n_f) [s], wave_dir (n_h) [deg],
                              water_depth [m] or the string "infinite", scaled (0 or 1)
-    /body<b>/properties/     name, cg (3) [m], cb (3) [m], disp_vol [m^3], dof (6), dof_start, dof_end
-    /body<b>/hydro_coeffs/   linear_restoring_stiffness (6, 6)
-                             added_mass/all (6, 6N, n_f), added_mass/inf_freq (6, 6N)
-                             radiation_damping/all (6, 6N, n_f)
-                             excitation/re, excitation/im (6, n_h, n_f)
+    /body<b>/properties/     name, cg (3) [m], cb (3) [m], disp_vol [m^3], dof (n_b, default 6), dof_start,
+                             dof_end (1-based rows of the body among the N)
+    /body<b>/hydro_coeffs/   linear_restoring_stiffness (n_b, n_b)
+                             added_mass/all (n_b, N, n_f), added_mass/inf_freq (n_b, N)
+                             radiation_damping/all (n_b, N, n_f)
+                             excitation/re, excitation/im (n_b, n_h, n_f)
                              excitation/scattering/{re,im}, excitation/froude-krylov/{re,im} (optional)
 
 MATLAB writes vectors as (n, 1) and scalars as (1, 1) arrays; both are accepted. Coefficients follow WAMIT's
@@ -23,7 +25,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -51,6 +53,7 @@ def read_bemio(
     body_names: Sequence[str] | None = None,
     rho: float | None = None,
     g: float | None = None,
+    mode_names: Mapping[str, Sequence[str]] | None = None,
 ) -> xr.Dataset:
     """Read a BEMIO / WEC-Sim ``.h5`` hydrodynamic file into a wecss hydrodynamic dataset.
 
@@ -69,7 +72,10 @@ def read_bemio(
       no moment arm (the -m g z_g term of a BEM code's total restoring vanishes when its reference point is
       the centre of gravity), so it is the buoyancy stiffness the schema asks for;
     - ``mass`` = rho * ``disp_vol`` (freely floating); BEMIO stores no inertia, so ``inertia`` is zero and the
-      attribute ``inertia_unknown_bodies`` lists every body.
+      attribute ``inertia_unknown_bodies`` lists every body;
+    - a body with ``dof`` = 6 + n holds n generalised modes (WAMIT's modes 7..), the DOFs ``<body>__mode7``, ...
+      (or ``mode_names``); they are normalised as the rigid DOFs are (unit length: by rho, rho omega, rho g). The
+      structural matrices BEMIO keeps for them (``gbm``) are not read: a device spec gives its own.
 
     Parameters
     ----------
@@ -82,6 +88,9 @@ def read_bemio(
         file's only for normalised data (``scaled = 0``).
     g : float, optional
         Gravitational acceleration [m/s^2]. Default: the file's ``simulation_parameters/g``; same rule.
+    mode_names : mapping of body name to sequence of str, optional
+        Names of the generalised modes of each body with ``dof`` > 6 (as many as it has; body names as in the
+        result). Default: ``mode7``, ``mode8``, ...
 
     Returns
     -------
@@ -96,10 +105,12 @@ def read_bemio(
         If ``path`` does not exist.
     BemioFormatError
         (a ``ValueError``) If a required dataset is missing or has an unexpected shape (the message names it and
-        gives the shape received and the one expected), or a body has generalised modes (dof != 6).
+        gives the shape received and the one expected), a body's ``dof`` is below 6 or its ``dof_start`` disagrees
+        with the bodies before it.
     ValueError
         If ``body_names`` has the wrong length, repeats a name or holds an invalid one; if ``rho`` or ``g`` is not
-        positive, or differs from the file's value for dimensional (``scaled = 1``) data.
+        positive, or differs from the file's value for dimensional (``scaled = 1``) data; if ``mode_names`` names
+        an unknown body, gives a body another number of modes than the file, or an invalid name.
     """
     try:
         import h5py
@@ -131,7 +142,9 @@ def read_bemio(
             found = ", ".join(f"body{n}" for n in numbers)
             raise BemioFormatError(f"{source}: body groups must be body1..bodyN; found {found}")
         n_bodies = len(numbers)
-        n_dof, n_f, n_h = 6 * n_bodies, omega_all.size, wave_dir_deg.size
+        sizes = [_body_dofs(reader, f"body{b + 1}/properties") for b in range(n_bodies)]
+        starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int)
+        n_dof, n_f, n_h = int(sum(sizes)), omega_all.size, wave_dir_deg.size
 
         added = np.zeros((n_dof, n_dof, n_f))
         damping = np.zeros((n_dof, n_dof, n_f))
@@ -142,30 +155,31 @@ def read_bemio(
         names, cg, cb, volume = [], np.zeros((n_bodies, 3)), np.zeros((n_bodies, 3)), np.zeros(n_bodies)
         for b in range(n_bodies):
             body = f"body{b + 1}"
-            dof = int(reader.scalar(f"{body}/properties/dof", default=6.0))
-            if dof != 6:
+            dof = sizes[b]
+            start = reader.scalar(f"{body}/properties/dof_start", default=float(starts[b] + 1))
+            if int(start) != starts[b] + 1:
                 raise BemioFormatError(
-                    f"{source}: /{body}/properties/dof = {dof}; only rigid bodies (6 DOFs) are supported, "
-                    "not generalised body modes"
+                    f"{source}: /{body}/properties/dof_start = {start:g}; the bodies before it have {starts[b]} DOFs "
+                    f"(dof of each body: {sizes}), so it should be {starts[b] + 1}"
                 )
-            rows = slice(6 * b, 6 * b + 6)
+            rows = slice(int(starts[b]), int(starts[b]) + dof)
             names.append(reader.string(f"{body}/properties/name", default=body))
             cg[b] = reader.vector(f"{body}/properties/cg", size=3)
             cb[b] = reader.vector(f"{body}/properties/cb", size=3)
             volume[b] = reader.scalar(f"{body}/properties/disp_vol")
             coeffs = f"{body}/hydro_coeffs"
-            stiffness[rows, rows] = reader.array(f"{coeffs}/linear_restoring_stiffness", (6, 6))
-            added[rows] = reader.array(f"{coeffs}/added_mass/all", (6, n_dof, n_f))
-            a_inf[rows] = reader.array(f"{coeffs}/added_mass/inf_freq", (6, n_dof))
-            damping[rows] = reader.array(f"{coeffs}/radiation_damping/all", (6, n_dof, n_f))
-            exc[rows] = reader.complex(f"{coeffs}/excitation", (6, n_h, n_f))
+            stiffness[rows, rows] = reader.array(f"{coeffs}/linear_restoring_stiffness", (dof, dof))
+            added[rows] = reader.array(f"{coeffs}/added_mass/all", (dof, n_dof, n_f))
+            a_inf[rows] = reader.array(f"{coeffs}/added_mass/inf_freq", (dof, n_dof))
+            damping[rows] = reader.array(f"{coeffs}/radiation_damping/all", (dof, n_dof, n_f))
+            exc[rows] = reader.complex(f"{coeffs}/excitation", (dof, n_h, n_f))
             for key, groups in (("diffraction", ("scattering",)), ("froude_krylov", _FROUDE_KRYLOV_GROUPS)):
                 part = parts[key]
                 if part is None:
                     continue
                 candidates = [f"{coeffs}/excitation/{group_name}" for group_name in groups]
                 group = next((c for c in candidates if f"{c}/re" in f), None)
-                values = None if group is None else reader.complex(group, (6, n_h, n_f))
+                values = None if group is None else reader.complex(group, (dof, n_h, n_f))
                 if values is None or not np.all(np.isfinite(values)):
                     parts[key] = None  # absent, or WEC-Sim's NaN placeholder
                 else:
@@ -193,7 +207,8 @@ def read_bemio(
         return np.transpose(values[..., keep], (2, 1, 0))
 
     names = _body_names(body_names, names, source)
-    dofs = [dof_name(names[m // 6], _DOFS[m % 6]) for m in range(n_dof)]
+    modes = _mode_names(mode_names, names, [n - 6 for n in sizes])
+    dofs = [dof_name(body, d) for body, extra in zip(names, modes, strict=True) for d in (*_DOFS, *extra)]
     attrs: dict[str, object] = {
         "bemio_scaled": int(scaled),
         "bemio_code": code,
@@ -262,6 +277,36 @@ def _body_names(body_names: Sequence[str] | None, from_file: list[str], source: 
         except ValueError as err:
             raise ValueError(f"{err}{hint}") from None
     return names
+
+
+def _body_dofs(reader: _Reader, properties: str) -> int:
+    """A body's number of DOFs, 6 plus its generalised modes (``properties/dof``, default 6)."""
+    value = reader.scalar(f"{properties}/dof", default=6.0)
+    if value != int(value) or value < 6:
+        raise BemioFormatError(
+            f"{reader.source}: /{properties}/dof = {value:g}; expected a whole number >= 6 (6 rigid-body DOFs, then "
+            "the body's generalised modes)"
+        )
+    return int(value)
+
+
+def _mode_names(given: Mapping[str, Sequence[str]] | None, bodies: list[str], counts: list[int]) -> list[list[str]]:
+    """Names of each body's generalised modes: ``given`` (checked against the file's counts), else mode7, mode8..."""
+    given = dict(given or {})
+    unknown = sorted(set(given) - set(bodies))
+    if unknown:
+        raise ValueError(f"mode_names names unknown bodies {unknown}; bodies: {bodies}")
+    out = []
+    for body, count in zip(bodies, counts, strict=True):
+        names = [str(m) for m in given.get(body, [f"mode{7 + j}" for j in range(count)])]
+        if len(names) != count or len(set(names)) != count:
+            raise ValueError(
+                f"mode_names[{body!r}] must give {count} distinct names (the body's dof is {6 + count}); got {names}"
+            )
+        for name in names:
+            dof_name(body, name)  # raises ValueError for a name that cannot name a generalised mode
+        out.append(names)
+    return out
 
 
 class _Reader:

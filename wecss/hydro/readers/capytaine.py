@@ -7,7 +7,10 @@ What changes on the way in:
   and diffraction forces are complex-conjugated (added mass and damping are real and unchanged);
 - matrices are ordered (omega, influenced_dof, radiating_dof), the force index first;
 - omega = 0 and omega = inf leave the frequency axis for ``added_mass_zero`` and ``added_mass_inf``;
-- DOF names become ``<body>__<Dof>`` (a single body's DOFs get its name as prefix);
+- DOF names become ``<body>__<Dof>`` (a single body's DOFs get its name as prefix); the six rigid-body DOFs are
+  recognised in any case (``heave``), any other DOF is a generalised mode of its body (a Capytaine custom DOF,
+  ``body.dofs["flex1"] = <displacement per unit coordinate at the faces>``) and keeps its name; each body's rigid
+  DOFs come first, then its generalised modes, in the order of the data;
 - the hydrostatic stiffness loses its gravity part. Capytaine's rigid-body stiffness about the rotation
   centre c holds, besides the buoyancy (pressure) terms, the terms of the weight m g acting at the centre of
   mass G: -m g (z_G - z_c) in roll-roll and pitch-pitch, +m g (x_G - x_c) in roll-yaw and +m g (y_G - y_c)
@@ -34,7 +37,7 @@ from ...constants import RIGID_BODY_DOFS
 from ...netcdf import unreadable
 from .._build import build_dataset
 from .._repair import HIGHEST_FREQUENCY_SOURCE
-from .._schema import dof_index, split_dof
+from .._schema import check_mode_name, dof_index, split_dof
 from .._validate import HydroDataError
 
 PathLike = str | os.PathLike[str]
@@ -62,6 +65,7 @@ def read_capytaine(
     center_of_buoyancy: Mapping[str, ArrayLike] | None = None,
     displaced_volume: Mapping[str, float] | None = None,
     reference_point: Mapping[str, ArrayLike] | None = None,
+    hydrostatic_stiffness: ArrayLike | xr.DataArray | None = None,
 ) -> xr.Dataset:
     """Read Capytaine results into a wecss hydrodynamic dataset (not validated: ``HydroData(ds)`` does that).
 
@@ -93,6 +97,13 @@ def read_capytaine(
     reference_point : mapping body -> (3,), optional
         Point the coefficients of the body are given about [m]: the rotation centre of its rotation DOFs.
         Default: the dataset's ``rotation_center`` (for a body without rotation DOFs, its centre of mass).
+    hydrostatic_stiffness : array (n_dof, n_dof) or DataArray, optional
+        Replaces the dataset's ``hydrostatic_stiffness``, in its convention (about the rotation centre, with the
+        weight terms of ``FloatingBody.compute_hydrostatic_stiffness``, which the reader removes as for the
+        dataset's own): a matrix in this reader's DOF order or a DataArray with dimensions ``influenced_dof`` and
+        ``radiating_dof`` (wecss DOF names). Capytaine computes no hydrostatics for a body with custom DOFs
+        (generalised modes) unless it is given their divergence; pass the rigid body's stiffness with the
+        generalised modes' rows and columns [SI per unit coordinate] here.
 
     Returns
     -------
@@ -163,7 +174,11 @@ def read_capytaine(
     cob = props.vectors("center_of_buoyancy", center_of_buoyancy)
     volume = props.volumes(displaced_volume)
     tensor = props.inertia(inertia, masses, com, ref)
-    stiffness = _hydrostatic_stiffness(ds, capy_dofs, missing)
+    stiffness = (
+        _hydrostatic_stiffness(ds, capy_dofs, missing)
+        if hydrostatic_stiffness is None
+        else _given_matrix(hydrostatic_stiffness, dofs, "hydrostatic_stiffness")
+    )
     if missing or stiffness is None or a_inf is None:
         raise HydroDataError(f"cannot read {label} into a wecss database; missing:\n  - " + "\n  - ".join(missing))
     stiffness = stiffness + _gravity_terms(dofs, bodies, masses, com, ref, g_)
@@ -281,18 +296,31 @@ def _dof_names(ds: xr.Dataset) -> tuple[list[str], list[str]]:
     for name in ("body", "body_name"):
         if name in ds.variables and ds[name].ndim == 0:
             prefix = str(ds[name].values)
-    out = []
+    named: list[tuple[str, str, str, bool]] = []  # (Capytaine name, body, DOF part, rigid)
     for name in capy:
         body, sep, dof = name.rpartition("__")
         if not sep:
             if prefix is None:
                 raise HydroDataError(f"DOF {name!r} has no body prefix and the dataset names no single body")
             body, dof = prefix, name
-        dof = dof[:1].upper() + dof[1:].lower()
-        if dof not in RIGID_BODY_DOFS:
-            raise HydroDataError(f"DOF {name!r} is not a rigid-body DOF; wecss reads only {', '.join(RIGID_BODY_DOFS)}")
-        out.append(f"{body}__{dof}")
-    return capy, out
+        folded = dof[:1].upper() + dof[1:].lower()
+        if folded in RIGID_BODY_DOFS:
+            named.append((name, body, folded, True))
+            continue
+        try:
+            check_mode_name(dof)
+        except ValueError as err:
+            raise HydroDataError(
+                f"DOF {name!r} is neither a rigid-body DOF ({', '.join(RIGID_BODY_DOFS)}) nor a usable generalised "
+                f"mode name: {err}"
+            ) from None
+        named.append((name, body, dof, False))
+    bodies = list(dict.fromkeys(body for _, body, _, _ in named))
+    # each body's rigid DOFs first, then its generalised modes (the schema's order), each in the data's order
+    ordered = [
+        entry for b in bodies for rigid in (True, False) for entry in named if entry[1] == b and entry[3] == rigid
+    ]
+    return [c for c, *_ in ordered], [f"{body}__{dof}" for _, body, dof, _ in ordered]
 
 
 def _check_keys(bodies: list[str], **mappings: Mapping[str, object] | None) -> None:
@@ -378,27 +406,13 @@ def _added_mass_inf(
     dofs: list[str],
     missing: list[str],
 ) -> tuple[np.ndarray | None, str]:
-    n = len(dofs)
     if isinstance(given, str):
         if given != HIGHEST_FREQUENCY:
             raise ValueError(f"added_mass_inf must be a matrix, {HIGHEST_FREQUENCY!r} or None; got {given!r}")
         w = omega[main[-1]]
         return added_mass[main[-1]], f"{HIGHEST_FREQUENCY_SOURCE}, omega = {w:.6g} rad/s (approximation)"
-    if isinstance(given, xr.DataArray):
-        try:
-            values = given.sel(influenced_dof=dofs, radiating_dof=dofs).transpose("influenced_dof", "radiating_dof")
-        except (KeyError, ValueError) as err:
-            raise ValueError(
-                f"added_mass_inf must have dimensions influenced_dof and radiating_dof holding {dofs}: {err}"
-            ) from None
-        return np.asarray(values.values, dtype=float), "given to read_capytaine"
     if given is not None:
-        matrix = np.asarray(given, dtype=float)
-        if matrix.shape != (n, n) or not np.all(np.isfinite(matrix)):
-            raise ValueError(
-                f"added_mass_inf must be a finite ({n}, {n}) matrix for DOFs {dofs}; got shape {matrix.shape}"
-            )
-        return matrix, "given to read_capytaine"
+        return _given_matrix(given, dofs, "added_mass_inf"), "given to read_capytaine"
     at_inf = np.flatnonzero(np.isinf(omega))
     if at_inf.size and np.all(np.isfinite(added_mass[at_inf[0]])):
         return added_mass[at_inf[0]], "Capytaine, omega = inf"
@@ -409,6 +423,24 @@ def _added_mass_inf(
         f"added_mass_inf={HIGHEST_FREQUENCY!r} (A at {w[-1]:.4g} rad/s, an approximation)"
     )
     return None, ""
+
+
+def _given_matrix(given: object, dofs: list[str], keyword: str) -> np.ndarray:
+    """A matrix over ``dofs`` given by keyword: a DataArray with wecss DOF names, or an array in the reader's order."""
+    n = len(dofs)
+    if isinstance(given, xr.DataArray):
+        try:
+            values = given.sel(influenced_dof=dofs, radiating_dof=dofs).transpose("influenced_dof", "radiating_dof")
+        except (KeyError, ValueError) as err:
+            raise ValueError(
+                f"{keyword} must have dimensions influenced_dof and radiating_dof holding {dofs}: {err}"
+            ) from None
+        matrix = np.asarray(values.values, dtype=float)
+    else:
+        matrix = np.asarray(given, dtype=float)
+    if matrix.shape != (n, n) or not np.all(np.isfinite(matrix)):
+        raise ValueError(f"{keyword} must be a finite ({n}, {n}) matrix for DOFs {dofs}; got shape {matrix.shape}")
+    return matrix
 
 
 # --- per-body data -------------------------------------------------------------------------------------
@@ -443,7 +475,7 @@ class _BodyData:
     def _inertia_block(self, body: str) -> tuple[list[str], np.ndarray] | None:
         if "inertia_matrix" not in self.ds:
             return None
-        idx = [k for k, _ in self.body_dofs[body]]
+        idx = [k for k, dof in self.body_dofs[body] if dof in RIGID_BODY_DOFS]  # Capytaine: NaN on custom DOFs
         names = [self.capy_dofs[k] for k in idx]
         da = self.ds["inertia_matrix"]
         try:
@@ -453,7 +485,7 @@ class _BodyData:
         values = np.asarray(block.values, dtype=float)
         if not np.all(np.isfinite(values)):
             return None
-        return [dof for _, dof in self.body_dofs[body]], values
+        return [dof for _, dof in self.body_dofs[body] if dof in RIGID_BODY_DOFS], values
 
     def mass(self, given: Mapping[str, float] | None) -> dict[str, float]:
         given = dict(given or {})

@@ -12,12 +12,21 @@ hydrostatics C_ij      C_ij / (rho g L^k)          k = 2, 3, 4 for 0, 1, 2 rotat
 =====================  ==========================  ================================================
 
 Complex amplitudes mean Re[X exp(+i omega t)] in WAMIT as in wecss: nothing is conjugated.
+
+Generalised modes (NEWMDS > 0): WAMIT numbers the modes of all bodies in one sequence, body k's 6 rigid-body modes
+followed by its NEWMDS(k) generalised modes (its modes 7, 8, ...). The number per body comes from the run's
+``.cfg`` beside the ``.out`` (``NEWMDS(k) = n``, or ``NEWMDS = n`` for body 1) or from ``mode_names``. WAMIT
+normalises the coefficients of generalised modes as those of translations (its manual, chapter 9: the mode
+shape is a displacement field in units of length per unit coordinate), so they count as translations in the
+exponents above (k = 3 for generalised-generalised added mass, m = 2 for their excitation, ...): with ULEN = 1
+this gives the values WAMIT computed, in SI per unit generalised coordinate.
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+import re
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Literal
 
@@ -48,6 +57,7 @@ def read_wamit(
     g: float | None = None,
     numeric_files: bool = True,
     excitation: Literal["diffraction", "haskind"] = "diffraction",
+    mode_names: Mapping[str, Sequence[str]] | None = None,
 ) -> xr.Dataset:
     """Read WAMIT results into a wecss hydrodynamic dataset.
 
@@ -95,6 +105,10 @@ def read_wamit(
         Use the numeric files beside the ``.out`` when present (default). ``False`` reads the ``.out`` alone.
     excitation : {"diffraction", "haskind"}
         Which exciting forces to read (``.3`` / ``.2`` numeric files).
+    mode_names : mapping of body name to sequence of str, optional
+        Names of each body's generalised modes (WAMIT's modes 7, 8, ... of the body), which become the DOFs
+        ``<body>__<name>``; they also give the number of modes per body when the run's ``.cfg`` is not beside the
+        ``.out``. Default: ``mode7``, ``mode8``, ... for the NEWMDS(k) modes of the ``.cfg``.
 
     Returns
     -------
@@ -107,7 +121,8 @@ def read_wamit(
         If the ``.out`` file does not exist.
     WamitFormatError
         (a ``ValueError``) If a file cannot be interpreted; the message names the file and line. Also when
-        a body is rotated (PHIBODY != 0), when there are generalised modes, when there are no exciting forces,
+        a body is rotated (PHIBODY != 0), when there are generalised modes whose number per body is known
+        neither from the ``.cfg`` nor from ``mode_names`` (or they disagree), when there are no exciting forces,
         or when a numeric file's periods or headings do not match the ``.out`` file.
     ValueError
         If ``body_names`` has the wrong length, repeats a name or holds an invalid one, or if ``rho``, ``g``
@@ -124,9 +139,11 @@ def read_wamit(
         if value is not None and not (np.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be a positive number; got {value!r}")
     out_path = _out_path(Path(path))
-    out = read_out(out_path, excitation)
+    counts, cfg = _generalised_counts(out_path, body_names, mode_names)
+    out = read_out(out_path, excitation, counts)
     n_bodies = len(out.bodies)
     names = _body_names(body_names, out)
+    modes = _mode_names(out, names, mode_names)
     for body in out.bodies:
         if abs(body.phibody_deg) > 0:
             raise WamitFormatError(
@@ -149,7 +166,7 @@ def read_wamit(
     exc = out.excitation.copy()
     headings = np.deg2rad(out.headings_deg)
     restoring = _restoring_from_out(out)
-    used = [out_path.name]
+    used = [out_path.name] + ([cfg.name] if cfg is not None else [])
     mass_matrices: list[np.ndarray] | None = None
     if numeric_files:
         if (f1 := _beside(out_path, ".1")) is not None:
@@ -162,7 +179,7 @@ def read_wamit(
             _merge_hydrostatics(fh, out, restoring)
             used.append(fh.name)
         if (fm := _beside(out_path, ".mmx")) is not None:
-            mass_matrices = read_mmx_mass(fm, n_bodies)
+            mass_matrices = read_mmx_mass(fm, n_bodies, out.generalised_modes)
             used.append(fm.name)
 
     # --- frequencies ---------------------------------------------------------------------------
@@ -175,7 +192,8 @@ def read_wamit(
 
     # --- modes kept and dimensional factors --------------------------------------------------------
     keep = np.flatnonzero(out.radiation_modes | out.excitation_modes)
-    rot = (np.arange(6 * n_bodies) % 6 >= 3).astype(int)
+    body_of, local = _mode_layout(out)
+    rot = ((local >= 3) & (local < 6)).astype(int)  # generalised modes count as translations (module docstring)
     k_rad = 3 + rot[:, None] + rot[None, :]
     k_hst = 2 + rot[:, None] + rot[None, :]
     m_exc = 2 + rot
@@ -205,7 +223,9 @@ def read_wamit(
     removed = _remove_gravity_terms(stiffness, out, masses, cogs, gravity)
     inertia, unknown = _inertia(out, masses, cogs, rho, mass_matrices)
 
-    dofs = [dof_name(names[m // 6], _DOFS[m % 6]) for m in keep]
+    dofs = [
+        dof_name(names[body_of[m]], _DOFS[local[m]] if local[m] < 6 else modes[body_of[m]][local[m] - 6]) for m in keep
+    ]
     attrs: dict[str, object] = {
         "wamit_version": out.version,
         "wamit_files": ", ".join(used),
@@ -218,6 +238,10 @@ def read_wamit(
         ),
         "center_of_mass_note": "WAMIT body origin XBODY (plus VCG), as the WAMIT run assumes",
     }
+    if sum(out.generalised_modes):
+        attrs["generalised_modes_note"] = "generalised modes normalised as translations (WAMIT's convention); " + (
+            "hydrostatics from the .hst" if "hst" in " ".join(used) else "no .hst: their hydrostatics are the .out's"
+        )
     if unknown:
         attrs["inertia_unknown_bodies"] = ", ".join(names[k] for k in unknown)
         attrs["inertia_note"] = "WAMIT output gives no radii of gyration or inertia for these bodies; set to zero"
@@ -284,6 +308,74 @@ def _body_names(body_names: Sequence[str] | None, out: OutFile) -> list[str]:
     return names
 
 
+_NEWMDS = re.compile(r"^\s*NEWMDS\s*(?:\(\s*(\d+)\s*\))?\s*=\s*(\d+)", re.IGNORECASE | re.MULTILINE)
+
+
+def _generalised_counts(
+    out_path: Path, body_names: Sequence[str] | None, mode_names: Mapping[str, Sequence[str]] | None
+) -> tuple[dict[int, int], Path | None]:
+    """NEWMDS(k) by 1-based body number, from the ``.cfg`` beside the ``.out`` and/or ``mode_names``, and the
+    ``.cfg`` read (None when absent).
+
+    Raises
+    ------
+    ValueError
+        If ``mode_names`` is not a mapping of body names to lists of names, or names an unknown body.
+    WamitFormatError
+        If ``mode_names`` and the ``.cfg`` disagree on a body's number of modes.
+    """
+    cfg = _beside(out_path, ".cfg")
+    from_cfg: dict[int, int] = {}
+    if cfg is not None:
+        for match in _NEWMDS.finditer(cfg.read_text(errors="replace")):
+            from_cfg[int(match.group(1) or 1)] = int(match.group(2))
+    if mode_names is None:
+        return {k: n for k, n in from_cfg.items() if n}, cfg
+    if not isinstance(mode_names, Mapping):
+        raise ValueError(f"mode_names must map body names to lists of mode names; got {mode_names!r}")
+    known = [str(b) for b in ([body_names] if isinstance(body_names, str) else body_names or [])]
+    counts = dict(from_cfg)
+    for body, names in mode_names.items():
+        if isinstance(names, str) or not isinstance(names, Sequence):
+            raise ValueError(f"mode_names[{body!r}] must be a list of mode names; got {names!r}")
+        if known and body in known:
+            number = known.index(body) + 1
+        elif not known and (m := re.fullmatch(r"body_(\d+)", str(body))):
+            number = int(m.group(1))
+        else:
+            accepted = ", ".join(known) if known else "body_1, body_2, ... (or pass body_names)"
+            raise ValueError(f"mode_names names unknown body {body!r}; accepted: {accepted}")
+        if cfg is not None and from_cfg.get(number, 0) != len(names):
+            raise WamitFormatError(
+                f"{cfg}: NEWMDS({number}) = {from_cfg.get(number, 0)}, but mode_names gives body {body!r} "
+                f"{len(names)} modes {list(names)}"
+            )
+        counts[number] = len(names)
+    return {k: n for k, n in counts.items() if n}, cfg
+
+
+def _mode_layout(out: OutFile) -> tuple[np.ndarray, np.ndarray]:
+    """Per WAMIT mode (0-based): its body (0-based) and its index within the body (0-5 rigid, 6.. generalised)."""
+    sizes = np.array([6 + m for m in out.generalised_modes] if out.generalised_modes else [6] * len(out.bodies))
+    body_of = np.repeat(np.arange(sizes.size), sizes)
+    return body_of, np.arange(body_of.size) - out.mode_start[body_of]
+
+
+def _mode_names(out: OutFile, names: list[str], given: Mapping[str, Sequence[str]] | None) -> list[list[str]]:
+    """Names of each body's generalised modes: the given ones, else ``mode7``, ``mode8``, ..."""
+    given = dict(given or {})
+    out_names = []
+    for k, body in enumerate(names):
+        count = out.generalised_modes[k] if out.generalised_modes else 0
+        modes = [str(m) for m in given.get(body, [f"mode{7 + j}" for j in range(count)])]
+        if len(set(modes)) != len(modes):
+            raise ValueError(f"mode_names[{body!r}] repeats a name: {modes}")
+        for mode in modes:
+            dof_name(body, mode)  # raises ValueError for a name that cannot name a generalised mode
+        out_names.append(modes)
+    return out_names
+
+
 # --- merging the numeric files ---------------------------------------------------------------------
 
 
@@ -311,7 +403,7 @@ def _merge_radiation(
     a_inf: np.ndarray,
 ) -> tuple[np.ndarray | None, np.ndarray]:
     """Overwrite the ``.out`` radiation coefficients with those of the ``.1`` file (in place)."""
-    n = 6 * len(out.bodies)
+    n = out.n_modes
     tables = read_numeric(path, (4, 5), "PER I J A(I,J) [B(I,J)]")
     rows, lines = tables[5]
     if rows.size:
@@ -345,7 +437,7 @@ def _merge_radiation(
 
 def _merge_excitation(path: Path, out: OutFile, exc: np.ndarray) -> np.ndarray:
     """Overwrite the ``.out`` excitation with the ``.3`` (or ``.2``) values (in place); return headings [rad]."""
-    n = 6 * len(out.bodies)
+    n = out.n_modes
     rows, lines = read_numeric(path, (7,), "PER BETA I Mod Pha Re Im")[7]
     (ii,) = _indices(path, rows[:, 2:3], lines, n)
     k = _match_periods(path, rows[:, 0], lines, out.periods)
@@ -376,8 +468,9 @@ def _indices(path: Path, columns: np.ndarray, lines: np.ndarray, n: int) -> tupl
     if np.any(bad):
         k = int(np.argmax(bad))
         raise WamitFormatError(
-            f"{path}, line {int(lines[k]) + 1}: mode index outside 1..{n} (6 per body); "
-            "generalised modes (NEWMDS) are not supported"
+            f"{path}, line {int(lines[k]) + 1}: mode index outside 1..{n} (6 per body plus its generalised modes); "
+            "generalised modes (NEWMDS) need their number per body: keep the run's .cfg beside the .out or pass "
+            "mode_names"
         )
     return tuple(idx[:, c] - 1 for c in range(idx.shape[1]))
 
@@ -386,19 +479,26 @@ def _indices(path: Path, columns: np.ndarray, lines: np.ndarray, n: int) -> tupl
 
 
 def _restoring_from_out(out: OutFile) -> np.ndarray:
-    """WAMIT's non-dimensional C (6n x 6n, block diagonal) from the ``.out`` body parameters.
+    """WAMIT's non-dimensional C (N x N, block diagonal by body) from the ``.out`` body parameters.
 
     C(i, j) with i, j in {3, 4, 5} is symmetric; C(4,6) and C(5,6) are not (C(6,4) = C(6,5) = 0), as in ``.hst``.
+    Indices i, j are within the body (7.. its generalised modes, when the header prints them).
     """
-    n = 6 * len(out.bodies)
+    n = out.n_modes
     c = np.zeros((n, n))
     for k, body in enumerate(out.bodies):
         if not body.restoring:
             raise WamitFormatError(f"{out.path}: body {body.number} has no restoring coefficients in the header")
+        o = int(out.mode_start[k])
+        size = 6 + (out.generalised_modes[k] if out.generalised_modes else 0)
         for (i, j), value in body.restoring.items():
-            c[6 * k + i - 1, 6 * k + j - 1] = value
+            if max(i, j) > size:
+                raise WamitFormatError(
+                    f"{out.path}, line {body.line + 1}: body {body.number}'s C({i},{j}) is beyond its {size} modes"
+                )
+            c[o + i - 1, o + j - 1] = value
             if i in (3, 4, 5) and j in (3, 4, 5):
-                c[6 * k + j - 1, 6 * k + i - 1] = value
+                c[o + j - 1, o + i - 1] = value
     return c
 
 
@@ -414,7 +514,7 @@ def _remove_gravity_terms(stiffness: np.ndarray, out: OutFile, masses: np.ndarra
             continue
         xg, yg, zg = cogs[k]
         weight = masses[k] * g
-        o = 6 * k
+        o = int(out.mode_start[k])
         stiffness[o + 3, o + 3] += weight * zg
         stiffness[o + 4, o + 4] += weight * zg
         stiffness[o + 3, o + 5] -= weight * xg
