@@ -7,6 +7,7 @@ Read from the source with ``ast``; nothing is imported. A new cycle or private i
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -228,3 +229,34 @@ def test_wecss_never_imports_its_plugins():
         f"{m} -> {t}" for m, ts in _graph().items() if m.startswith("wecss") for t in ts if t.startswith("controllers")
     ]
     assert wrong == []
+
+
+_SIX = re.compile(r"\b6 \* [A-Za-z_(]|// 6\b|% 6\b")
+_SIX_HOMES = ("wecss/multibody/", "wecss/compiled/_plant.py")
+"""Where a body's six rigid rows may be counted: the multibody model and the plant's offset arrays."""
+_SIX_ELSEWHERE = {
+    "wecss/sim/_progress.py": "hours and minutes (// 60, % 60 ... no body)",
+    "wecss/devices/_beam_modes.py": "the Euler-Bernoulli element matrix (6 h)",
+    "wecss/hydro/readers/_wamit_parse.py": "WAMIT's own mode numbering (6 per body plus NEWMDS)",
+}
+
+
+def test_bodies_are_indexed_through_the_offsets_only():
+    """No ``6 * i`` body indexing outside the multibody model and the plant's offset arrays (a body may carry
+    generalised modes besides its six rigid rows)."""
+    found = []
+    for path in sorted((ROOT / "wecss").rglob("*.py")):
+        rel = path.relative_to(ROOT).as_posix()
+        if rel.startswith(_SIX_HOMES) or rel in _SIX_ELSEWHERE:
+            continue
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            code = line.split("#", 1)[0]
+            if _SIX.search(code):
+                found.append(f"{rel}:{number}: {line.strip()}")
+    assert found == []
+
+
+def test_the_six_check_finds_body_indexing():
+    assert _SIX.search("out[6 * i : 6 * i + 3] = x")
+    assert _SIX.search("body = row // 6")
+    assert not _SIX.search("x = 16 * i")

@@ -1,5 +1,6 @@
 """Hydrodynamic databases: one xarray schema, readers, BEM generation, reference-point transforms, checks."""
 
+from ..constants import DOF_KINDS as DOF_KINDS
 from ._catalogue import DATA_DIR as DATA_DIR
 from ._catalogue import available as available
 from ._catalogue import load as load
@@ -11,7 +12,6 @@ from ._irregular import find_irregular_frequencies as find_irregular_frequencies
 from ._irregular import remove_irregular_frequencies as remove_irregular_frequencies
 from ._repair import RepairReport as RepairReport
 from ._repair import repair as repair
-from ._schema import DOF_KINDS as DOF_KINDS
 from ._schema import check_mode_name as check_mode_name
 from ._schema import dof_index as dof_index
 from ._schema import dof_kind as dof_kind

@@ -1,0 +1,26 @@
+"""The per-step kernels count no references per call beyond a few (docs/architecture.md, "No reference counts per
+step"): a helper that numba cannot inline into ``configure`` or ``respond`` would make every array of the Plant and
+Workspace tuples count up and down on every evaluation (40 % of a step before issue 15)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.sim.scenes import scene
+from wecss.compiled import JIT, compile_plant
+from wecss.compiled.kernels import configure, respond, workspace
+
+LIMITS = {"configure": 11, "respond": 3}
+"""``NRT_incref`` calls in the kernels' LLVM IR (measured: configure 11, respond 3)."""
+
+
+@pytest.mark.skipif(not JIT, reason="counts the references of numba-compiled code")
+def test_the_per_step_kernels_count_few_references():
+    compiled = compile_plant(scene("m4-134"))
+    p, w = compiled.plant, workspace(compiled.plant)
+    configure(p, compiled.q0, np.zeros(p.hydro_index.size), w)
+    respond(p, np.zeros(p.twists.shape[0]), compiled.radiation.newest, np.zeros(p.pto_kind.size), w)
+    for name, fn in (("configure", configure), ("respond", respond)):
+        counts = [ir.count("call void @NRT_incref") for ir in fn.inspect_llvm().values()]
+        assert counts and max(counts) <= LIMITS[name], f"{name}: {counts} NRT_incref calls (at most {LIMITS[name]})"
