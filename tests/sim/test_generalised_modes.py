@@ -40,12 +40,13 @@ H, T = 0.1, 1.6  # regular wave height [m] and period [s]
 
 
 def coordinate(ds: xr.Dataset, name: str) -> np.ndarray:
-    """The time series of generalised coordinate ``name`` whatever dimension of coordinates the result files it
-    under (a generalised one, or the translations' until the result has one)."""
-    for var, dim in (("generalised_coordinate", "dof_generalised"), ("displacement", "dof_linear")):
-        if var in ds and name in ds[dim].values:
-            return np.asarray(ds[var].sel({dim: name}).values)
-    raise KeyError(name)
+    """The time series of generalised coordinate ``name``: a mode is a coordinate of its own kind in a result
+    (``dof_generalised``, units 1), never among the translations (``dof_linear``, m)."""
+    if "__flex" in name:
+        assert "dof_linear" not in ds.coords or name not in ds.dof_linear.values
+        assert ds.generalised_coordinate.attrs["units"] == "1"
+        return np.asarray(ds.generalised_coordinate.sel(dof_generalised=name).values)
+    return np.asarray(ds.displacement.sel(dof_linear=name).values)
 
 
 @pytest.fixture(scope="module")
@@ -145,7 +146,7 @@ def _one_mode_scene(tmp_path: Path, constant: bool, solver: str) -> Scene:
             "device": {"name": str(tmp_path / f"{kind}.toml")},
             "sea": {"kind": "regular", "height": H, "period": T, "duration": "40 Tp", "ramp": "5 Tp"},
             "solver": {"method": solver, "dt": "Tp/100"},
-            "outputs": {"variables": ["motion"]},
+            "outputs": {"variables": ["motion", "excitation"]},
         }
     )
 
@@ -165,6 +166,8 @@ def test_time_domain_amplitude_and_modal_period_of_a_mode_with_a_memory_kernel(t
     compiled = compile_scene(_one_mode_scene(tmp_path, constant=False, solver="beeman"))
     ds = simulate(compiled)
     x, t = coordinate(ds, "barge__flex1"), ds.time.values
+    assert ds.excitation_generalised_force.attrs["units"] == "J"  # the mode's excitation: a generalised force
+    assert list(ds.hydro_dof_generalised.values) == ["barge__flex1"]
     omega = 2 * np.pi / T
     last = t > t[-1] - 10 * T
     basis = np.column_stack([np.cos(omega * t[last]), np.sin(omega * t[last]), np.ones(np.count_nonzero(last))])
