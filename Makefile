@@ -32,25 +32,9 @@ lint: $(STAMP)
 typecheck: $(STAMP)
 	$(VENV)/bin/mypy
 
+# every studies/[a-z]*.py with --quick, stopping at the first failure (studies/_quick.py finds them)
 studies-quick: $(STAMP)
-	$(PY) studies/generate_hydro.py --all --quick
-	$(PY) studies/generate_fits.py --quick
-	$(PY) studies/radiation_fits.py --quick
-	$(PY) studies/bench_radiation.py --quick
-	$(PY) studies/bench_simulator.py --quick
-	$(PY) studies/wecccomp.py --quick
-	$(PY) studies/linear_vs_nonlinear.py --quick
-	$(PY) studies/control_example.py --quick
-	$(PY) studies/control_table.py --quick
-	$(PY) studies/m4_control.py --quick
-	$(PY) studies/bench_mpc.py --quick
-	$(PY) studies/work_precision.py --quick
-	$(PY) studies/stability.py --quick
-	$(PY) studies/bench_startup.py --quick
-	$(PY) studies/m4_paper.py --quick
-	$(PY) studies/bench_sweep.py --quick
-	$(PY) studies/notc.py --quick
-	$(PY) studies/bench_memory.py --quick
+	$(PY) studies/_quick.py
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache

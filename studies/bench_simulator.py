@@ -32,23 +32,13 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _common import ROOT, write_section
+from _common import ENV, ROOT, wall, write_section
+from _scenes import layout_scene
 
-from wecss.sim import JIT, Scene, compile_scene, default_scene_path, simulate
+from wecss.sim import JIT, Scene, compile_scene, simulate
 
 SECTION = "## Simulator"
 PAPER_STEP = 4.4e-3  # s per step, M4 paper Table 3 (MATLAB, 111 layout)
-
-
-def layout_scene(device: str, radiation: str, duration: str | float, ramp: str | float = "5 Tp") -> Scene:
-    """The default scene on another layout, radiation method and duration."""
-    base = Scene.from_toml(default_scene_path())
-    return dataclasses.replace(
-        base,
-        device=dataclasses.replace(base.device, name=device),
-        sea=dataclasses.replace(base.sea, duration=duration, ramp=ramp),
-        radiation=dataclasses.replace(base.radiation, method=radiation),
-    )
 
 
 def with_solver(scene: Scene, method: str) -> Scene:
@@ -76,9 +66,7 @@ def timed(scene: Scene, repeats: int) -> tuple[float, float, float, dict, float]
 
 def command_times(repeats: int, quick: bool) -> dict[str, tuple[float, float, float]]:
     """Per radiation method: median (wall, CPU, time loop) [s] of the whole ``wecss run`` command on the default
-    scene (10 Tp for ``quick``), warm numba cache, each run in a fresh process (``bench_startup.wall``)."""
-    from bench_startup import ENV, wall
-
+    scene (10 Tp for ``quick``), warm numba cache, each run in a fresh process (``_common.wall``)."""
     from wecss.results import open_result
 
     work = Path(tempfile.mkdtemp())
@@ -114,7 +102,7 @@ def pure_python_step(device: str) -> float:
     run, after the first has paid the lazy imports)."""
     code = (
         "import time, dataclasses, sys; sys.path.insert(0, 'studies')\n"
-        "from bench_simulator import layout_scene\n"
+        "from _scenes import layout_scene\n"
         "from wecss.sim import compile_scene, simulate\n"
         f"sc = layout_scene({device!r}, 'state_space', 0.6, 0.1)\n"
         "c = compile_scene(sc); simulate(c)\n"  # the first run also pays the lazy imports

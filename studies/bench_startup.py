@@ -17,34 +17,17 @@ import datetime
 import json
 import os
 import platform
-import resource
 import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
-from _common import ROOT, write_section
+from _common import ENV, ROOT, wall, write_section
+from _scenes import layout_scene
 
 SECTION = "## Start-up, whole command and run length"
-ENV = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONPATH": str(ROOT)}
-
-
-def wall(command: list[str], repeats: int, cwd: Path, before: Callable[[], None] = lambda: None) -> tuple[float, float]:
-    """Median (wall time, CPU time: user + system) [s] of a command in a fresh process. On a shared machine the CPU
-    time is the closer estimate of the wall time on an idle one."""
-    runs, cpus = [], []
-    for _ in range(repeats):
-        before()
-        usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
-        subprocess.run(command, env=ENV, cwd=cwd, check=True, capture_output=True)
-        runs.append(time.perf_counter() - start)
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpus.append(after.ru_utime - usage.ru_utime + after.ru_stime - usage.ru_stime)
-    return float(np.median(runs)), float(np.median(cpus))
 
 
 STAGES = """
@@ -98,9 +81,6 @@ def stages(scene: Path, work: Path, repeats: int, hidden: bool) -> tuple[list[fl
 def in_process(repeats: int, quick: bool) -> dict[str, float]:
     """compile_scene of a second sea state (state space and convolution) [s]; loop time per step at 100 Tp and
     500 Tp (m4-134, state space) [s]."""
-    sys.path.insert(0, str(ROOT / "studies"))
-    from bench_simulator import layout_scene
-
     from wecss.sim import compile_scene, simulate
 
     out: dict[str, float] = {}

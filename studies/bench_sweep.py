@@ -24,7 +24,7 @@ from _common import ROOT, write_section
 
 from wecss.results import open_result
 from wecss.scene import Scene, default_scene_path
-from wecss.sweep import Sweep, run_sweep
+from wecss.sweep import Executor, Sweep, run_sweep
 
 
 def sweep(quick: bool) -> Sweep:
@@ -39,9 +39,11 @@ def sweep(quick: bool) -> Sweep:
     return Sweep(scene, (("sea.period", periods), ("sea.seed", seeds)), name="bench")
 
 
-def measure(folder: Path, spec: Sweep, **kwargs: object) -> dict[str, float]:
+def measure(
+    folder: Path, spec: Sweep, executor: Executor = "sequential", workers: int | None = None
+) -> dict[str, float]:
     start = time.perf_counter()
-    ds = run_sweep(spec, folder, progress=None, **kwargs)  # type: ignore[arg-type]
+    ds = run_sweep(spec, folder, executor=executor, workers=workers, progress=None)
     wall = time.perf_counter() - start
     run = json.loads(ds.attrs["sweep_run"])
     loops = [open_result(p).attrs["run_time_s"] for p in sorted(folder.glob("c[0-9]*.nc"))]
@@ -69,7 +71,7 @@ def main(argv: list[str] | None = None) -> int:
         try:
             import dask.distributed  # noqa: F401
 
-            rows["local Dask, 2 workers"] = measure(Path(tmp) / "dask", spec, dask=True, workers=2)
+            rows["local Dask, 2 workers"] = measure(Path(tmp) / "dask", spec, executor="dask", workers=2)
         except ImportError:
             print("dask not installed: the Dask row is skipped", file=sys.stderr)
     seq = rows["sequential (this process)"]

@@ -4,7 +4,8 @@ Usage::
 
     python studies/generate_hydro.py m4-134            # one database (m4-134 takes about 20 minutes on 2 cores)
     python studies/generate_hydro.py --all             # all of them, one after the other
-    python studies/generate_hydro.py --all --quick     # coarse smoke run into a temporary folder (CI)
+    python studies/generate_hydro.py --quick           # all of them, coarse, into a temporary folder (CI)
+    python studies/generate_hydro.py m4-111 --quick    # one of them, coarse
 
 Each run reads ``wecss/data/hydro/<name>.toml`` (floats, frequencies, mesh; every assumption is written there),
 solves all floats together with Capytaine (``wecss.hydro.bem.run_bem``), stores the geometry file's text in the
@@ -89,7 +90,11 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("names", nargs="*", help=f"databases to generate, among: {', '.join(available())}")
     parser.add_argument("--all", action="store_true", help="generate every database that has a geometry file")
-    parser.add_argument("--quick", action="store_true", help="coarse smoke run written to a temporary folder")
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="coarse smoke run written to a temporary folder (of every database unless names are given)",
+    )
     parser.add_argument(
         "--output-dir",
         type=Path,
@@ -100,11 +105,11 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
 
-    names = available() if args.all else args.names
+    names = available() if args.all or (args.quick and not args.names) else args.names
     unknown = sorted(set(names) - set(available()))
     if not names or unknown:
         parser.error(
-            f"give --all or names among {', '.join(available())}"
+            f"give --all, --quick or names among {', '.join(available())}"
             + (f"; unknown: {', '.join(unknown)}" if unknown else "")
         )
     if args.n_jobs < 1:

@@ -132,8 +132,12 @@ def run(folder: Path, quick: bool, every: int, processes: int, dask: bool) -> di
     for name, sweep in sweeps(quick, every).items():
         start = time.perf_counter()
         print(f"[{name}] {len(sweep.cases)} cases", file=sys.stderr, flush=True)
-        kwargs: dict[str, Any] = {"dask": True, "workers": processes} if dask else {"processes": processes}
-        out[name] = run_sweep(sweep, folder / name, **kwargs)
+        if dask:
+            out[name] = run_sweep(sweep, folder / name, executor="dask", workers=processes)
+        elif processes > 1:
+            out[name] = run_sweep(sweep, folder / name, executor="processes", workers=processes)
+        else:
+            out[name] = run_sweep(sweep, folder / name)
         print(f"[{name}] {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
     return out
 
@@ -516,7 +520,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="a handful of cases into a temporary folder (CI)")
     parser.add_argument("--out", type=Path, help="folder of the sweeps (default out/m4_paper; --quick: temporary)")
     parser.add_argument("--every", type=int, default=6, help="nonlinear regular runs at every n-th database period")
-    parser.add_argument("--processes", type=int, default=1, help="worker processes (or Dask workers)")
+    parser.add_argument(
+        "--processes", type=int, default=1, help="worker processes (1: this process), or the Dask workers with --dask"
+    )
     parser.add_argument("--dask", action="store_true", help="run the sweeps on a local Dask cluster")
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:

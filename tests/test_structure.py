@@ -2,6 +2,8 @@
 count too), and no private module imported from outside the package that owns it (DESIGN.md, issue 12).
 
 Read from the source with ``ast``; nothing is imported. A new cycle or private import fails here with the path.
+The study scripts import each other by bare name (``from _common import ROOT``: a script's folder is first on
+``sys.path``); such an import of a module ``studies/X.py`` from a study counts as an import of ``studies.X``.
 """
 
 from __future__ import annotations
@@ -27,6 +29,14 @@ def _modules() -> dict[str, Path]:
     return {_module_name(p): p for top in SOURCES for p in sorted((ROOT / top).rglob("*.py"))}
 
 
+def _absolute(stem: str, name: str, known: dict[str, Path]) -> str:
+    """The module an absolute import of ``stem`` in module ``name`` reaches: a study's bare-name import of a sibling
+    script (``import _common`` in ``studies/bench_mpc.py``) is ``studies._common``; any other stays as written."""
+    if name.startswith("studies.") and stem and f"studies.{stem.split('.')[0]}" in known:
+        return f"studies.{stem}"
+    return stem
+
+
 def _imports(name: str, path: Path, known: dict[str, Path], source: str | None = None) -> set[str]:
     """Every wecss/controllers module that ``name`` imports, at any depth of the file (``source``: the file's text,
     read from ``path`` when not given)."""
@@ -35,14 +45,14 @@ def _imports(name: str, path: Path, known: dict[str, Path], source: str | None =
     text = path.read_text() if source is None else source
     for node in ast.walk(ast.parse(text, filename=str(path))):
         if isinstance(node, ast.Import):
-            targets = [alias.name for alias in node.names]
+            targets = [_absolute(alias.name, name, known) for alias in node.names]
         elif isinstance(node, ast.ImportFrom):
             if node.level:
                 base = package.split(".")
                 base = base[: len(base) - node.level + 1]
                 stem = ".".join([*base, node.module] if node.module else base)
             else:
-                stem = node.module or ""
+                stem = _absolute(node.module or "", name, known)
             # "from package import submodule" imports the submodule
             targets = [f"{stem}.{a.name}" if f"{stem}.{a.name}" in known else stem for a in node.names]
         else:
@@ -157,7 +167,7 @@ def _private_names_imported_across(
             base = base[: len(base) - node.level + 1]
             stem = ".".join([*base, node.module] if node.module else base)
         else:
-            stem = node.module or ""
+            stem = _absolute(node.module or "", name, known)
         if stem.split(".")[0] not in SOURCES:
             continue
         for alias in node.names:
@@ -186,6 +196,53 @@ def test_the_checks_find_a_cycle_and_a_private_import():
     modules = _modules()
     path = ROOT / "wecss" / "sim" / "_dataset.py"
     assert "wecss.control" in _imports("wecss.sim._dataset", path, modules)
+
+
+def test_the_studies_imports_by_bare_name_are_resolved():
+    """``from _common import ROOT`` in a study is an edge to ``studies._common``; so is an import of another study."""
+    graph = _graph()
+    assert {"studies._common", "studies.m4_control", "studies.wecccomp"} <= graph["studies.bench_mpc"]
+    assert "studies._scenes" in graph["studies.bench_startup"]
+
+
+def test_the_checks_find_a_cycle_between_studies_imported_by_bare_name():
+    """Made-up studies: ``made_up_a`` imports ``made_up_b`` by bare name, ``made_up_b`` imports it back inside a
+    function. The cycle is found; a bare name that is no study (numpy), and the same bare name in a library module
+    (which does not run with ``studies/`` on its path), are not study imports."""
+    folder = ROOT / "studies"
+    known = {**_modules(), "studies.made_up_a": folder / "made_up_a.py", "studies.made_up_b": folder / "made_up_b.py"}
+    sources = {
+        "studies.made_up_a": "import numpy as np\nfrom made_up_b import helper\nfrom _common import ROOT\n",
+        "studies.made_up_b": "def helper():\n    import made_up_a\n",
+    }
+    graph = {name: _imports(name, known[name], known, text) for name, text in sources.items()}
+    assert graph == {
+        "studies.made_up_a": {"studies.made_up_b", "studies._common"},
+        "studies.made_up_b": {"studies.made_up_a"},
+    }
+    assert _cycles(graph) == [["studies.made_up_a", "studies.made_up_b"]]
+    assert _imports("wecss.cli", ROOT / "wecss" / "cli.py", known, "import made_up_a\nimport _common\n") == set()
+
+
+def test_the_private_checks_read_the_studies_bare_name_imports():
+    """A study may use the studies' own private helpers (one folder, one package); a library module may not, and a
+    study reaching into a library's private module or name is found."""
+    known = _modules()
+    path = ROOT / "studies" / "bench_mpc.py"
+    own = "from _common import _private_helper\nimport _scenes\n"
+    graph = {"studies.bench_mpc": _imports("studies.bench_mpc", path, known, own)}
+    assert graph["studies.bench_mpc"] == {"studies._common", "studies._scenes"}
+    assert _private_modules_imported_across(graph) == []
+    assert _private_names_imported_across("studies.bench_mpc", path, known, own) == []
+    into_wecss = "from wecss.sim._result import build_result\nfrom wecss.sim import _notes\n"
+    graph = {"studies.bench_mpc": _imports("studies.bench_mpc", path, known, into_wecss)}
+    assert _private_modules_imported_across(graph) == ["studies.bench_mpc -> wecss.sim._result"]
+    assert _private_names_imported_across("studies.bench_mpc", path, known, into_wecss) == [
+        "studies.bench_mpc -> wecss.sim:_notes"
+    ]
+    library = "from studies._common import ROOT\n"
+    graph = {"wecss.cli": _imports("wecss.cli", ROOT / "wecss" / "cli.py", known, library)}
+    assert _private_modules_imported_across(graph) == ["wecss.cli -> studies._common"]
 
 
 @pytest.mark.parametrize(

@@ -8,8 +8,9 @@ periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic data
 JONSWAP sea) and writes the result and a PNG summary plot; ``--set sea.period=1.4`` overrides a scene value (dotted
 paths, validated by the scene). ``wecss plot RESULT.nc`` plots a result.
 
-``wecss sweep SWEEP.toml -o FOLDER`` runs a sweep (``wecss.sweep``): in this process, ``--processes N``, or on Dask
-(``--dask``, ``--scheduler tcp://...``); started again it resumes; ``--retry-failed`` runs the failed cases again.
+``wecss sweep SWEEP.toml -o FOLDER`` runs a sweep (``wecss.sweep``): in this process, in a pool of processes
+(``--processes N``), or on Dask (``--dask [--workers N]``, ``--scheduler tcp://...``); started again it resumes;
+``--retry-failed`` runs the failed cases again.
 """
 
 from __future__ import annotations
@@ -181,10 +182,7 @@ def _sweep(args: argparse.Namespace) -> int:
     ds = run_sweep(
         sweep,
         folder,
-        processes=args.processes,
-        dask=args.dask,
-        scheduler=args.scheduler,
-        workers=args.workers,
+        **sweep_executor(args),
         retry_failed=args.retry_failed,
         progress=None if args.quiet else sys.stderr,
         compress=args.compress,
@@ -195,6 +193,31 @@ def _sweep(args: argparse.Namespace) -> int:
         f"wrote {folder / 'combined.nc'}"
     )
     return 1 if ds.attrs["cases_failed"] else 0
+
+
+def sweep_executor(args: argparse.Namespace) -> dict[str, Any]:
+    """The executor arguments of ``run_sweep`` from the command's flags: none, ``executor="sequential"``;
+    ``--processes N``, ``executor="processes", workers=N`` (N = 1: in this process, as the default);
+    ``--dask [--workers N]``, ``executor="dask"`` with a LocalCluster of N workers (default: one per core);
+    ``--scheduler ADDRESS``, ``executor="dask", scheduler=ADDRESS``.
+
+    Raises
+    ------
+    ValueError
+        For ``--processes`` below 1, and for ``--workers`` without ``--dask`` (the pool's size is ``--processes N``).
+    """
+    if args.processes is not None and args.processes < 1:
+        raise ValueError(f"--processes must be an integer >= 1; got {args.processes}")
+    if args.workers is not None and not (args.dask or args.scheduler):
+        raise ValueError(
+            f"--workers {args.workers} sets the size of the Dask LocalCluster (--dask); "
+            "for a pool of processes give --processes N"
+        )
+    if args.dask or args.scheduler:
+        return {"executor": "dask", "workers": args.workers, "scheduler": args.scheduler}
+    if args.processes is not None and args.processes != 1:
+        return {"executor": "processes", "workers": args.processes}
+    return {"executor": "sequential"}
 
 
 def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) -> None:
@@ -285,10 +308,13 @@ def build_parser() -> argparse.ArgumentParser:
     sweep = sub.add_parser("sweep", help="run a sweep file (.toml): cases over sea states and designs, resumable")
     sweep.add_argument("sweep", help="sweep file (.toml) with [sweep] axes and the base [scene]")
     sweep.add_argument("-o", "--output", help="folder of the case files and combined.nc; default: the file's name")
-    sweep.add_argument("--processes", type=int, default=1, help="worker processes without Dask (default 1)")
-    sweep.add_argument("--dask", action="store_true", help="run on a Dask LocalCluster (one worker per core)")
-    sweep.add_argument("--workers", type=int, help="workers of the Dask LocalCluster (default: the cores)")
-    sweep.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. tcp://host:8786")
+    where = sweep.add_mutually_exclusive_group()
+    where.add_argument(
+        "--processes", type=int, metavar="N", help="run the cases in a pool of N processes (1: in this process)"
+    )
+    where.add_argument("--dask", action="store_true", help="run on a Dask LocalCluster (one worker per core)")
+    where.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. tcp://host:8786")
+    sweep.add_argument("--workers", type=int, metavar="N", help="workers of the Dask LocalCluster (default: the cores)")
     sweep.add_argument("--retry-failed", action="store_true", help="run the cases that failed before again")
     sweep.add_argument("-q", "--quiet", action="store_true", help="no progress line")
     _storage_options(sweep)

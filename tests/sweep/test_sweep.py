@@ -1,5 +1,5 @@
-"""Sweeps: cases from dotted scene paths, resumable runs (a real kill of the sweep process), failures recorded, the
-Dask path equal to the process path, ``wecss run --set``."""
+"""Sweeps: cases from dotted scene paths, resumable runs (a real kill of the sweep process), failures recorded,
+``wecss run --set``. The executors are tested in ``test_executors.py``."""
 
 from __future__ import annotations
 
@@ -19,23 +19,9 @@ from wecss.cli import main
 from wecss.scene import Scene, SceneError, default_scene_path
 from wecss.sweep import Sweep, apply_overrides, case_paths, case_status, run_sweep
 
+from .cases import BASE, statistics
+
 ROOT = Path(__file__).resolve().parents[2]
-
-# the frequency-domain solution: a case costs a compile and a few hundredths of a second
-BASE = {
-    "device": {"name": "m4-111"},
-    "sea": {"kind": "jonswap", "height": 0.04, "period": 1.2, "duration": 30.0, "ramp": 0.0},
-    "solver": {"method": "frequency", "dt": 0.01},
-    "outputs": {"statistics_only": True, "variables": []},
-}
-TIMINGS = ["run_time", "compile_time"]
-
-
-def _statistics(ds: xr.Dataset) -> xr.Dataset:
-    """The combined dataset without what differs between runs (timings, the run's counts)."""
-    out = ds.drop_vars(TIMINGS)
-    out.attrs = {k: v for k, v in ds.attrs.items() if k != "sweep_run"}
-    return out
 
 
 def _sweep_file(tmp_path: Path, periods: list[float], name: str = "sweep.toml") -> Path:
@@ -175,7 +161,7 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path: Path) -> N
     assert counts["skipped"] == len(finished) and counts["ran"] == len(sweep.cases) - len(finished)
     assert not stale.exists()
     whole = run_sweep(sweep, tmp_path / "whole", progress=None)
-    xr.testing.assert_identical(_statistics(resumed), _statistics(whole))
+    xr.testing.assert_identical(statistics(resumed), statistics(whole))
 
 
 def test_the_cli_runs_a_sweep_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -198,27 +184,6 @@ def test_the_cli_stores_a_sweep_compressed_in_single_precision(tmp_path: Path) -
                 v for v in nc.variables.values() if getattr(v.dtype, "kind", "") == "f" and v.name not in nc.dimensions
             ]
             assert floats and all(v.dtype == np.float32 for v in floats), path.name
-
-
-def test_process_pool_and_local_dask_cluster_give_the_results_of_the_sequential_run(tmp_path: Path) -> None:
-    pytest.importorskip("dask.distributed")
-    sweep = Sweep(BASE, (("sea.period", (1.0, 1.4)), ("controller.parameters.damping", (3.0, 6.0))))
-    sequential = run_sweep(sweep, tmp_path / "one", progress=None)
-    pool = run_sweep(sweep, tmp_path / "pool", processes=2, progress=None)
-    dask = run_sweep(sweep, tmp_path / "dask", dask=True, workers=2, progress=None)
-    assert list(np.unique(dask.status.values)) == ["done"]
-    xr.testing.assert_identical(_statistics(pool), _statistics(sequential))
-    xr.testing.assert_identical(_statistics(dask), _statistics(sequential))
-
-
-def test_bad_runner_options_are_refused(tmp_path: Path) -> None:
-    sweep = Sweep(BASE, (("sea.period", (1.0,)),))
-    with pytest.raises(ValueError, match="processes must be an integer >= 1"):
-        run_sweep(sweep, tmp_path, processes=0)
-    with pytest.raises(ValueError, match="without Dask use processes"):
-        run_sweep(sweep, tmp_path, workers=2)
-    with pytest.raises(ValueError, match="processes is for runs without Dask"):
-        run_sweep(sweep, tmp_path, dask=True, processes=2)
 
 
 def test_cases_that_change_only_the_sea_reuse_the_device_and_give_the_results_of_a_fresh_compile() -> None:
@@ -246,16 +211,6 @@ def test_cases_that_change_only_the_sea_reuse_the_device_and_give_the_results_of
     c = simulate(scene)
     np.testing.assert_array_equal(a.mean_pto_power.values, b.mean_pto_power.values)
     np.testing.assert_array_equal(a.mean_pto_power.values, c.mean_pto_power.values)
-
-
-@pytest.mark.slow
-def test_a_sweep_runs_on_an_existing_cluster_given_by_its_scheduler_address(tmp_path: Path) -> None:
-    distributed = pytest.importorskip("dask.distributed")
-    sweep = Sweep(BASE, (("sea.period", (1.0, 1.4)),))
-    sequential = run_sweep(sweep, tmp_path / "one", progress=None)
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
-        remote = run_sweep(sweep, tmp_path / "remote", scheduler=cluster.scheduler_address, progress=None)
-    xr.testing.assert_identical(_statistics(remote), _statistics(sequential))
 
 
 def test_progress_in_a_log_prints_a_line_now_and_then_not_per_case() -> None:

@@ -1,6 +1,7 @@
 """Hydrodynamic databases: one xarray schema, readers, BEM generation, reference-point transforms, checks."""
 
 from ..constants import DOF_KINDS as DOF_KINDS
+from ..errors import WecssWarning as WecssWarning
 from ._catalogue import DATA_DIR as DATA_DIR
 from ._catalogue import available as available
 from ._catalogue import load as load
@@ -25,7 +26,6 @@ from ._transform import move_to_center_of_mass as move_to_center_of_mass
 from ._validate import HydroDataError as HydroDataError
 from ._validate import HydroDataWarning as HydroDataWarning
 from ._validate import IrregularFrequencyWarning as IrregularFrequencyWarning
-from ._validate import WecssWarning as WecssWarning
 from ._validate import validate as validate
 from .readers.bemio import BemioFormatError as BemioFormatError
 from .readers.bemio import read_bemio as read_bemio

@@ -11,6 +11,7 @@ import warnings
 import numpy as np
 import xarray as xr
 
+from ..errors import WecssWarning
 from ._irregular import describe_bands, find_irregular_frequencies
 from ._peaks import diagonal_peaks, negligible_dofs
 from ._schema import (
@@ -29,10 +30,6 @@ are judged fairly; BEM codes often miss it on body-to-body couplings (``wecss.hy
 
 NEGATIVE_DAMPING_RTOL: float = 1e-3
 """Largest accepted negative diagonal damping, relative to that diagonal entry's peak over omega."""
-
-
-class WecssWarning(UserWarning):
-    """Base class of the warnings wecss issues (the test suite turns them into errors)."""
 
 
 class HydroDataError(ValueError):

@@ -6,18 +6,20 @@ Example::
 
     from wecss.sweep import Sweep, run_sweep
     sweep = Sweep.of(scene, {"sea.period": [0.8, 1.0, 1.2], "sea.height": [0.04, 0.06]})
-    ds = run_sweep(sweep, "out/power-matrix", processes=2)   # ds.total_power over (sea.period, sea.height)
+    ds = run_sweep(sweep, "out/power-matrix", executor="processes", workers=2)  # total_power over the axes
 """
 
+from ._case import CaseOutcome as CaseOutcome
+from ._case import run_case as run_case
 from ._combine import case_statistics as case_statistics
 from ._combine import combine as combine
+from ._executors import BLAS_THREADS as BLAS_THREADS
+from ._executors import EXECUTORS as EXECUTORS
+from ._executors import Executor as Executor
 from ._files import case_paths as case_paths
 from ._files import case_status as case_status
 from ._progress import Progress as Progress
-from ._run import BLAS_THREADS as BLAS_THREADS
-from ._run import CaseOutcome as CaseOutcome
 from ._run import prepare_folder as prepare_folder
-from ._run import run_case as run_case
 from ._run import run_sweep as run_sweep
 from ._spec import SWEEP_MODES as SWEEP_MODES
 from ._spec import Case as Case

@@ -1,5 +1,5 @@
-"""Running a sweep: every case in a worker (this process, a pool of processes, or a Dask cluster), one netCDF file per
-case written atomically by this process, resumable, failures recorded, and the combined dataset at the end.
+"""Running a sweep: every case on its executor (this process, a pool of processes or a Dask cluster), one netCDF
+file per case written atomically by this process, resumable, failures recorded, and the combined dataset at the end.
 
 The folder of a sweep holds ``sweep.json`` (the sweep, checked on resume), ``<case>.nc`` per finished case,
 ``<case>.failed.json`` per failed case (its error) and ``sweep.log``. A case counts as finished only when its file
@@ -9,73 +9,31 @@ again runs exactly the cases that have no file.
 
 from __future__ import annotations
 
-import contextlib
+import functools
 import json
 import os
 import sys
 import time
-import traceback
-from collections.abc import Callable, Iterator
-from concurrent.futures import Future, ProcessPoolExecutor, as_completed
-from dataclasses import dataclass
-from multiprocessing import get_context
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any, ParamSpec, TextIO, TypeVar
 
 import xarray as xr
 
 from ..netcdf import write_netcdf
+from ._case import CaseOutcome
 from ._combine import combine
+from ._executors import Executor, check_executor, execute
 from ._files import case_paths, case_status, write_text
 from ._progress import Progress
 from ._spec import Case, Sweep
 
-BLAS_THREADS = {
-    "OPENBLAS_NUM_THREADS": "1",
-    "OMP_NUM_THREADS": "1",
-    "MKL_NUM_THREADS": "1",
-    "NUMBA_NUM_THREADS": "1",
-}
-"""Environment of every worker process: one BLAS thread per worker (the workers share the cores)."""
+P = ParamSpec("P")
+R = TypeVar("R")
 
 SWEEP_FILE = "sweep.json"
 LOG_FILE = "sweep.log"
 COMBINED_FILE = "combined.nc"
-
-
-@dataclass(frozen=True)
-class CaseOutcome:
-    """What a worker sends back: the result (None on failure), the error text, and the compile and run times [s]."""
-
-    result: xr.Dataset | None
-    error: str | None
-    compile_s: float
-    run_s: float
-
-
-def run_case(scene_json: str) -> CaseOutcome:
-    """Compile and run one case (in a worker); any exception becomes a recorded failure.
-
-    The compiled plant's parts that the case's swept values do not change are cached per process by
-    ``wecss.compiled`` (device, hydrodynamic coupling, equilibrium, radiation kernel).
-    """
-    from ..control import compile_scene
-    from ..scene import Scene
-    from ..sim import simulate
-
-    start = time.perf_counter()
-    compiled_at = start
-    try:
-        scene = Scene.from_json(scene_json)
-        compiled = compile_scene(scene)
-        compiled_at = time.perf_counter()
-        ds = simulate(compiled)
-    except Exception as err:  # recorded with its traceback; the sweep goes on
-        text = f"{type(err).__name__}: {err}\n" + "".join(traceback.format_exception(err)[-3:])
-        return CaseOutcome(None, text, compiled_at - start, time.perf_counter() - compiled_at)
-    end = time.perf_counter()
-    ds.attrs["sweep_compile_time_s"] = compiled_at - start
-    return CaseOutcome(ds, None, compiled_at - start, end - compiled_at)
 
 
 def _definition(sweep: Sweep) -> dict[str, Any]:
@@ -114,32 +72,47 @@ class _Log:
             f.write(f"{stamp} {text}\n")
 
 
-@contextlib.contextmanager
-def _pinned_environment() -> Iterator[None]:
-    """BLAS threads pinned to one in the environment that new worker processes inherit."""
-    previous = {k: os.environ.get(k) for k in BLAS_THREADS}
-    os.environ.update(BLAS_THREADS)
-    try:
-        yield
-    finally:
-        for key, value in previous.items():
-            if value is None:
-                os.environ.pop(key, None)
-            else:
-                os.environ[key] = value
+REMOVED_KEYWORDS = ("processes", "dask")
+"""Keyword arguments of ``run_sweep`` replaced by ``executor=`` (issue 25); each is refused naming the new form."""
 
 
-Submit = Callable[[str], "Future[CaseOutcome]"]
+def _new_form(removed: dict[str, object]) -> str:
+    """How a call with the removed keyword arguments is written now."""
+    old = ", ".join(f"{name}={value!r}" for name, value in removed.items())
+    if removed.get("dask"):
+        new = "executor='dask'"
+    elif "processes" in removed and removed["processes"] != 1:
+        new = f"executor='processes', workers={removed['processes']!r}"
+    else:
+        new = "executor='sequential'"
+    return (
+        f"run_sweep({old}) is now run_sweep({new}); executor is 'sequential' (the default), 'processes' or 'dask', "
+        "with workers= (processes and dask) and scheduler= (dask) as its settings"
+    )
 
 
+def _refuse_removed_keywords(function: Callable[P, R]) -> Callable[P, R]:
+    """``function`` refusing the keyword arguments of ``REMOVED_KEYWORDS`` with a ``TypeError`` that gives the new
+    form of the call (any other unknown keyword fails as Python's own ``TypeError``)."""
+
+    @functools.wraps(function)
+    def refusing(*args: P.args, **kwargs: P.kwargs) -> R:
+        removed = {name: kwargs[name] for name in REMOVED_KEYWORDS if name in kwargs}
+        if removed:
+            raise TypeError(_new_form(removed))
+        return function(*args, **kwargs)
+
+    return refusing
+
+
+@_refuse_removed_keywords
 def run_sweep(
     sweep: Sweep,
     folder: str | os.PathLike[str],
     *,
-    processes: int = 1,
-    dask: bool = False,
-    scheduler: str | None = None,
+    executor: Executor = "sequential",
     workers: int | None = None,
+    scheduler: str | None = None,
     retry_failed: bool = False,
     progress: TextIO | None = sys.stderr,
     compress: int = 0,
@@ -153,15 +126,15 @@ def run_sweep(
     sweep : Sweep
     folder : path
         Where the case files, the failure records, the log and the combined dataset go (created if needed).
-    processes : int
-        Without Dask: 1 runs the cases in this process; more runs them in a pool of that many processes.
-    dask : bool
-        Run on Dask: a LocalCluster of ``workers`` processes (default: the cores), one thread each, or the cluster
-        at ``scheduler``.
-    scheduler : str, optional
-        Address of an existing Dask scheduler (``tcp://host:8786``); implies ``dask``.
+    executor : {"sequential", "processes", "dask"}
+        Where the cases run: in this process (the default), in a pool of worker processes, or on Dask (a new
+        LocalCluster of worker processes with one thread each, or the existing cluster at ``scheduler``). Worker
+        processes run with one BLAS thread each (``BLAS_THREADS``).
     workers : int, optional
-        Workers of the LocalCluster (``dask`` only).
+        Worker processes of the pool (``"processes"``) or of the LocalCluster (``"dask"``); default: one per core.
+    scheduler : str, optional
+        Address of an existing Dask scheduler, e.g. ``tcp://host:8786`` (``"dask"`` only; its cluster has its own
+        workers).
     retry_failed : bool
         Run again the cases that failed before (default: they stay failed and are skipped).
     progress : text stream or None
@@ -179,21 +152,15 @@ def run_sweep(
     Raises
     ------
     ValueError
-        On bad options, or a folder that holds another sweep.
+        On an unknown executor, a setting given to an executor it does not belong to (the message names the one it
+        belongs to), bad setting values, or a folder that holds another sweep.
+    TypeError
+        On the keyword arguments this function no longer takes (``processes=``, ``dask=``): the message gives the
+        new form of the call, e.g. ``run_sweep(processes=2)`` is now ``run_sweep(executor='processes', workers=2)``.
     ImportError
         If Dask is asked for and not installed.
     """
-    if not (isinstance(processes, int) and not isinstance(processes, bool) and processes >= 1):
-        raise ValueError(f"processes must be an integer >= 1; got {processes!r}")
-    use_dask = dask or scheduler is not None
-    if workers is not None and not use_dask:
-        raise ValueError("workers sets the size of a Dask LocalCluster; without Dask use processes")
-    if workers is not None and scheduler is not None:
-        raise ValueError("workers sets the size of a LocalCluster; an existing cluster (scheduler) has its own")
-    if use_dask and processes != 1:
-        raise ValueError("processes is for runs without Dask; give workers for a LocalCluster")
-    if workers is not None and not (isinstance(workers, int) and workers >= 1):
-        raise ValueError(f"workers must be an integer >= 1; got {workers!r}")
+    check_executor(executor, workers=workers, scheduler=scheduler)
     path = prepare_folder(sweep, folder)
     log = _Log(path / LOG_FILE)
     todo = []
@@ -223,13 +190,7 @@ def run_sweep(
         bar.update(outcome.result is not None)
 
     try:
-        if use_dask:
-            _run_dask(todo, finish, scheduler, workers)
-        elif processes == 1:
-            for case in todo:
-                finish(case, run_case(case.scene.to_json()))
-        else:
-            _run_pool(todo, finish, processes)
+        execute(executor, todo, finish, workers=workers, scheduler=scheduler)
     except KeyboardInterrupt:
         log.write(f"interrupted after {bar.done + bar.failed} of {len(todo)} cases; start again to resume")
         raise
@@ -249,46 +210,3 @@ def run_sweep(
     )
     write_netcdf(ds, path / COMBINED_FILE, compress=compress, float32=float32)
     return ds
-
-
-def _run_pool(todo: list[Case], finish: Callable[[Case, CaseOutcome], None], processes: int) -> None:
-    with _pinned_environment():
-        pool = ProcessPoolExecutor(max_workers=processes, mp_context=get_context("spawn"))
-    try:
-        futures = {pool.submit(run_case, case.scene.to_json()): case for case in todo}
-        for future in as_completed(futures):
-            finish(futures[future], future.result())
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown()
-
-
-def _run_dask(
-    todo: list[Case], finish: Callable[[Case, CaseOutcome], None], scheduler: str | None, workers: int | None
-) -> None:
-    try:
-        from dask.distributed import Client, LocalCluster
-        from dask.distributed import as_completed as dask_completed
-    except ImportError:
-        raise ImportError(
-            "sweeps on Dask need dask.distributed: pip install 'wecss[dask]' (or run with processes, without Dask)"
-        ) from None
-    with contextlib.ExitStack() as stack:
-        if scheduler is not None:
-            client = stack.enter_context(Client(scheduler))
-        else:
-            n = workers or os.cpu_count() or 1
-            cluster = stack.enter_context(
-                LocalCluster(
-                    n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None, env=dict(BLAS_THREADS)
-                )
-            )
-            client = stack.enter_context(Client(cluster))
-        futures = {client.submit(run_case, case.scene.to_json(), pure=False): case for case in todo}
-        try:
-            for future in dask_completed(list(futures)):
-                finish(futures[future], future.result())
-        except BaseException:
-            client.cancel(list(futures))
-            raise

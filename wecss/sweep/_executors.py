@@ -1,0 +1,139 @@
+"""Where a sweep's cases run: the executors ``"sequential"`` (this process), ``"processes"`` (a pool of worker
+processes) and ``"dask"`` (a Dask LocalCluster, or an existing cluster given by its scheduler's address), each with
+the settings that belong to it, checked before any case runs."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Callable, Iterator
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from multiprocessing import get_context
+from typing import Literal
+
+from ._case import CaseOutcome, run_case
+from ._spec import Case
+
+Executor = Literal["sequential", "processes", "dask"]
+
+EXECUTORS: tuple[Executor, ...] = ("sequential", "processes", "dask")
+"""The executors of ``run_sweep(..., executor=...)``."""
+
+SETTINGS: dict[str, tuple[Executor, ...]] = {"workers": ("processes", "dask"), "scheduler": ("dask",)}
+"""Each executor setting of ``run_sweep`` and the executors it belongs to."""
+
+BLAS_THREADS = {
+    "OPENBLAS_NUM_THREADS": "1",
+    "OMP_NUM_THREADS": "1",
+    "MKL_NUM_THREADS": "1",
+    "NUMBA_NUM_THREADS": "1",
+}
+"""Environment of every worker process: one BLAS thread per worker (the workers share the cores)."""
+
+Finish = Callable[[Case, CaseOutcome], None]
+
+
+def check_executor(executor: object, *, workers: object, scheduler: object) -> None:
+    """Refuse an unknown executor, a setting given to an executor it does not belong to, and bad setting values.
+
+    Parameters
+    ----------
+    executor : str
+        One of ``EXECUTORS``.
+    workers : int or None
+        Worker processes of the pool (``"processes"``) or of a new Dask LocalCluster (``"dask"``).
+    scheduler : str or None
+        Address of an existing Dask scheduler (``"dask"``).
+
+    Raises
+    ------
+    ValueError
+        Saying what was received and what is accepted, and naming the executor a misplaced setting belongs to.
+    """
+    if executor not in EXECUTORS:
+        accepted = ", ".join(repr(e) for e in EXECUTORS)
+        raise ValueError(f"executor must be one of {accepted}; got {executor!r}")
+    given = {"workers": workers, "scheduler": scheduler}
+    for name, owners in SETTINGS.items():
+        if given[name] is not None and executor not in owners:
+            belongs = " or ".join(f"executor={owner!r}" for owner in owners)
+            raise ValueError(f"{name}={given[name]!r} is a setting of {belongs}; got executor={executor!r}")
+    if workers is not None and not (isinstance(workers, int) and not isinstance(workers, bool) and workers >= 1):
+        raise ValueError(f"workers must be an integer >= 1 (or None: one per core); got {workers!r}")
+    if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
+        raise ValueError(f"scheduler must be the address of a Dask scheduler (tcp://host:8786); got {scheduler!r}")
+    if workers is not None and scheduler is not None:
+        raise ValueError(
+            f"workers={workers!r} sets the size of a new Dask LocalCluster; the existing cluster at "
+            f"scheduler={scheduler!r} has its own workers: give one of them"
+        )
+
+
+def execute(
+    executor: Executor, todo: list[Case], finish: Finish, *, workers: int | None, scheduler: str | None
+) -> None:
+    """Run every case of ``todo`` on ``executor`` (settings checked by :func:`check_executor`), calling
+    ``finish(case, outcome)`` in this process as each one ends (in the order they end)."""
+    if executor == "sequential":
+        for case in todo:
+            finish(case, run_case(case.scene.to_json()))
+    elif executor == "processes":
+        _run_pool(todo, finish, workers or os.cpu_count() or 1)
+    else:
+        _run_dask(todo, finish, scheduler, workers)
+
+
+@contextlib.contextmanager
+def _pinned_environment() -> Iterator[None]:
+    """BLAS threads pinned to one in the environment that new worker processes inherit."""
+    previous = {k: os.environ.get(k) for k in BLAS_THREADS}
+    os.environ.update(BLAS_THREADS)
+    try:
+        yield
+    finally:
+        for key, value in previous.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+
+
+def _run_pool(todo: list[Case], finish: Finish, processes: int) -> None:
+    with _pinned_environment():
+        pool = ProcessPoolExecutor(max_workers=processes, mp_context=get_context("spawn"))
+    try:
+        futures = {pool.submit(run_case, case.scene.to_json()): case for case in todo}
+        for future in as_completed(futures):
+            finish(futures[future], future.result())
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
+
+
+def _run_dask(todo: list[Case], finish: Finish, scheduler: str | None, workers: int | None) -> None:
+    try:
+        from dask.distributed import Client, LocalCluster
+        from dask.distributed import as_completed as dask_completed
+    except ImportError:
+        raise ImportError(
+            "sweeps on Dask need dask.distributed: pip install 'wecss[dask]' (or run with executor='processes')"
+        ) from None
+    with contextlib.ExitStack() as stack:
+        if scheduler is not None:
+            client = stack.enter_context(Client(scheduler))
+        else:
+            n = workers or os.cpu_count() or 1
+            cluster = stack.enter_context(
+                LocalCluster(
+                    n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None, env=dict(BLAS_THREADS)
+                )
+            )
+            client = stack.enter_context(Client(cluster))
+        futures = {client.submit(run_case, case.scene.to_json(), pure=False): case for case in todo}
+        try:
+            for future in dask_completed(list(futures)):
+                finish(futures[future], future.result())
+        except BaseException:
+            client.cancel(list(futures))
+            raise
