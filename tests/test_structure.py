@@ -234,9 +234,9 @@ def test_the_private_checks_read_the_studies_bare_name_imports():
     assert graph["studies.bench_mpc"] == {"studies._common", "studies._scenes"}
     assert _private_modules_imported_across(graph) == []
     assert _private_names_imported_across("studies.bench_mpc", path, known, own) == []
-    into_wecss = "from wecss.sim._result import build_result\nfrom wecss.sim import _notes\n"
+    into_wecss = "from wecss.sim._dataset import build_result\nfrom wecss.sim import _notes\n"
     graph = {"studies.bench_mpc": _imports("studies.bench_mpc", path, known, into_wecss)}
-    assert _private_modules_imported_across(graph) == ["studies.bench_mpc -> wecss.sim._result"]
+    assert _private_modules_imported_across(graph) == ["studies.bench_mpc -> wecss.sim._dataset"]
     assert _private_names_imported_across("studies.bench_mpc", path, known, into_wecss) == [
         "studies.bench_mpc -> wecss.sim:_notes"
     ]
