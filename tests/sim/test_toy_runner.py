@@ -11,16 +11,13 @@ import pytest
 import xarray as xr
 
 from tests.sim.scenes import HeldDamping, scene
-from wecss.compiled import Plant, RadiationArrays
-from wecss.compiled.kernels import Workspace, configure, integrate_configuration, respond
+from wecss.compiled.kernels import configure, integrate_configuration, respond
 from wecss.scene import Capabilities, SceneError, available_runners, register_runner, unregister_runner
 from wecss.sim import simulate
 from wecss.sim.runners import (
+    Chunk,
     FixedStepRunner,
-    LoopState,
     LoopStatus,
-    StepSettings,
-    Store,
     block_history,
     memory_advance,
     record_step,
@@ -34,19 +31,8 @@ class SemiImplicitEuler(FixedStepRunner):
     description = "semi-implicit Euler (a test's toy)"
     capabilities = Capabilities(streaming=True, order=1)
 
-    def advance(
-        self,
-        prepared: Any,
-        p: Plant,
-        r: RadiationArrays,
-        excitation: np.ndarray,
-        command: np.ndarray,
-        step0: int,
-        settings: StepSettings,
-        state: LoopState,
-        out: Store,
-        work: Workspace,
-    ) -> tuple[int, int]:
+    def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
+        p, r, excitation, command, step0, settings, state, out, work = chunk
         h = settings.h
         q, v, acc, z, u_now, buf, pos, far = (
             state.q,

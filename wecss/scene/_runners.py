@@ -85,6 +85,8 @@ class Runner(ABC):
     name: str = ""
     description: str = ""
     capabilities: Capabilities = Capabilities()
+    radiation_reason: str = ""
+    """Why the runner takes only the radiation methods it declares (said when it refuses another)."""
 
     def check(self, scene: Any) -> None:
         """Refuse a scene (a ``wecss.scene.Scene``) this runner cannot run.
@@ -99,9 +101,10 @@ class Runner(ABC):
         """
         caps = self.capabilities
         if caps.memory_model and scene.radiation.method not in caps.radiation:
+            reason = f" ({self.radiation_reason})" if self.radiation_reason else ""
             raise SceneError(
-                f"solver.method {self.name!r} needs radiation.method {' or '.join(map(repr, caps.radiation))}; got "
-                f"{scene.radiation.method!r}"
+                f"solver.method {self.name!r} needs radiation.method {' or '.join(map(repr, caps.radiation))}{reason}; "
+                f"got {scene.radiation.method!r}"
             )
         for option in OPTIONAL_SOLVER_FIELDS:
             if getattr(scene.solver, option) is not None and option not in caps.options:

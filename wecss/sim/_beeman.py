@@ -25,6 +25,7 @@ from ..scene import Capabilities
 from ._fixed_step import FixedStepRunner
 from ._loop import (
     ACCELERATION_FLOOR,
+    Chunk,
     LoopState,
     LoopStatus,
     StepSettings,
@@ -189,20 +190,8 @@ class Beeman(FixedStepRunner):
     )
     capabilities = Capabilities(streaming=True, order=2)
 
-    def advance(
-        self,
-        prepared: Any,
-        p: Plant,
-        r: RadiationArrays,
-        excitation: np.ndarray,
-        command: np.ndarray,
-        step0: int,
-        settings: StepSettings,
-        state: LoopState,
-        out: Store,
-        work: Workspace,
-    ) -> tuple[int, int]:
-        return beeman_chunk(p, r, excitation, command, step0, settings, state, out, work)
+    def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
+        return beeman_chunk(*chunk)
 
     def command_changed(
         self, p: Plant, r: RadiationArrays, state: LoopState, held: np.ndarray, command: np.ndarray

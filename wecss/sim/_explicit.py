@@ -26,13 +26,13 @@ from typing import Any
 import numpy as np
 
 from ..compiled import Plant, RadiationArrays
-from ..compiled.kernels import Workspace, accelerations, integrate_configuration, kernel, kinematics
+from ..compiled.kernels import accelerations, integrate_configuration, kernel, kinematics
 from ..control import ControlledScene
-from ..scene import Capabilities, SceneError
-from ._beeman import shift_history
-from ._fixed_step import FixedStepRunner
+from ..scene import SceneError
+from ._beeman import Beeman
 from ._loop import (
     ACCELERATION_FLOOR,
+    Chunk,
     LoopState,
     LoopStatus,
     StepSettings,
@@ -161,13 +161,12 @@ def beeman_explicit_chunk(
     return LoopStatus.OK, step0 + n_steps
 
 
-class BeemanExplicit(FixedStepRunner):
+class BeemanExplicit(Beeman):
     """Beeman with the M4 paper's explicit, iterated added mass (see the module docstring): a replication option,
     slower, and refused where the iteration cannot converge."""
 
     name = "beeman-explicit"
     description = "Beeman with the M4 paper's explicit added mass, iterated with the corrector (replication option)"
-    capabilities = Capabilities(streaming=True, order=2)
 
     def prepare(self, controlled: ControlledScene) -> Any:
         """The rigid plant, the added mass and the iteration's spectral radius at the equilibrium; refuses a scene
@@ -183,34 +182,14 @@ class BeemanExplicit(FixedStepRunner):
         rigid, added = split_added_mass(controlled.plant)
         return rigid, added, factor
 
-    def advance(
-        self,
-        prepared: Any,
-        p: Plant,
-        r: RadiationArrays,
-        excitation: np.ndarray,
-        command: np.ndarray,
-        step0: int,
-        settings: StepSettings,
-        state: LoopState,
-        out: Store,
-        work: Workspace,
-    ) -> tuple[int, int]:
+    def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
         rigid, added, _ = prepared
-        return beeman_explicit_chunk(rigid, added, r, excitation, command, step0, settings, state, out)
-
-    def command_changed(
-        self, p: Plant, r: RadiationArrays, state: LoopState, held: np.ndarray, command: np.ndarray
-    ) -> None:
-        shift_history(p, r, state, held, command)
+        c = chunk
+        return beeman_explicit_chunk(rigid, added, c.r, c.excitation, c.command, c.step0, c.settings, c.state, c.out)
 
     def solver_attrs(self, out: Store, prepared: Any, n_steps: int) -> dict[str, Any]:
-        evaluations = out.evaluations
         return {
-            "solver": "beeman",
-            "evaluations_per_step": float(evaluations[0]) / max(1, n_steps),
-            "max_evaluations_per_step": int(evaluations[1]),
-            "newton_corrector_steps": int(evaluations[2]),
+            **super().solver_attrs(out, prepared, n_steps),
             "added_mass": "explicit",
             "added_mass_iteration_factor": prepared[2],
         }

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..compiled import CompiledScene, Plant, RadiationArrays
-from ..compiled.kernels import Workspace, accelerations, workspace
+from ..compiled.kernels import accelerations, workspace
 from ..control import ControlledScene
 from ..outputs import CHANNEL_NAMES
 from ..scene import Capabilities, Runner
@@ -29,7 +29,7 @@ from ._control import ControlLoop
 from ._errors import PtoLimitExceeded, SimulationDiverged
 from ._guards import farthest_body, stiff_pto_hint, translation_bound
 from ._layout import grouped_hydro_order
-from ._loop import LoopState, LoopStatus, StepSettings, Store, new_store
+from ._loop import Chunk, LoopState, LoopStatus, StepSettings, Store, new_store
 from ._memory import far_sums_array
 from ._progress import Progress
 from ._record import Record, stats_start
@@ -65,23 +65,11 @@ class FixedStepRunner(Runner):
         return None
 
     @abstractmethod
-    def advance(
-        self,
-        prepared: Any,
-        p: Plant,
-        r: RadiationArrays,
-        excitation: np.ndarray,
-        command: np.ndarray,
-        step0: int,
-        settings: StepSettings,
-        state: LoopState,
-        out: Store,
-        work: Workspace,
-    ) -> tuple[int, int]:
-        """Advance the steps whose excitation rows ``excitation`` holds (``stages`` rows per step after the first,
-        at global step ``step0``), ``state`` in place, each step recorded into ``out`` with
-        ``wecss.sim._loop.record_step``; ``command`` the held PTO command [N or N m], ``work`` the kernels'
-        workspace. Returns (a :class:`LoopStatus`, the global step it ended at)."""
+    def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
+        """Advance the steps whose excitation rows ``chunk.excitation`` holds (``stages`` rows per step after the
+        first, at global step ``chunk.step0``), ``chunk.state`` in place, each step recorded into ``chunk.out``
+        with ``record_step`` (see :class:`~wecss.sim._loop.Chunk`); ``prepared``: what :meth:`prepare` made.
+        Returns (a :class:`LoopStatus`, the global step it ended at)."""
 
     def command_changed(
         self, p: Plant, r: RadiationArrays, state: LoopState, held: np.ndarray, command: np.ndarray
@@ -240,7 +228,7 @@ def run_fixed_step(
             if np.any(command != held):
                 runner.command_changed(p, r, state, held, command)
         status, at = runner.advance(
-            prepared, p, r, excitation.chunk(done, m), command, done, settings, state, out, work
+            prepared, Chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out, work)
         )
         if status != LoopStatus.OK:
             raise _diverged(runner, LoopStatus(status), at, controlled, q, v)

@@ -15,7 +15,7 @@ from ..compiled import pto_control_force, saturate
 from ..compiled.kernels import end_stop_force
 from ..control import ControlledScene, compile_scene
 from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
-from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene, SceneError
+from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene
 from ._control import ControlLoop
 from ._dataset import build_result
 from ._errors import PtoLimitExceeded
@@ -28,14 +28,7 @@ class LinearRunner(Runner):
     name = "linear"
     description = "the equations linearised about the equilibrium, stepped exactly in modal coordinates"
     capabilities = Capabilities(radiation=("state_space",), free_base=False, options=("hold",), order=2)
-
-    def check(self, scene: Scene) -> None:
-        if scene.radiation.method != "state_space":
-            raise SceneError(
-                "solver.method 'linear' needs radiation.method 'state_space' (the linear model carries the radiation "
-                f"memory as states); got {scene.radiation.method!r}"
-            )
-        super().check(scene)
+    radiation_reason = "the linear model carries the radiation memory as states"
 
     def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
         return linear_record(controlled, hold=controlled.scene.solver.linear_hold)

@@ -10,8 +10,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..compiled import Plant
-from ..compiled.kernels import kernel
+from ..compiled import Plant, RadiationArrays
+from ..compiled.kernels import Workspace, kernel
 from ..outputs import CHANNEL_NAMES, CHANNELS
 
 ACCELERATION_FLOOR: float = 1e-11
@@ -120,6 +120,25 @@ class LoopState(NamedTuple):
     pos: np.ndarray
     pto_now: np.ndarray
     far: np.ndarray
+
+
+class Chunk(NamedTuple):
+    """What the fixed-step loop hands an integrator for a chunk of steps (``FixedStepRunner.advance``), in the
+    order of the built-in chunk kernels' arguments: the plant ``p``, the radiation arrays ``r``, the chunk's
+    ``excitation`` rows (the steps' times, and the stages between them where the runner asks for them), the held
+    PTO ``command`` [N or N m], the global step ``step0`` the chunk starts at, the ``settings``, the ``state``
+    advanced in place, the store ``out`` each step is recorded into (:func:`record_step`) and the kernels'
+    workspace ``work``."""
+
+    p: Plant
+    r: RadiationArrays
+    excitation: np.ndarray
+    command: np.ndarray
+    step0: int
+    settings: StepSettings
+    state: LoopState
+    out: Store
+    work: Workspace
 
 
 @kernel

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..compiled.kernels import workspace
 from ..control import ControlledScene
-from ..scene import Capabilities, Runner, Scene, SceneError
+from ..scene import Capabilities, Runner
 from ._errors import SimulationDiverged
 from ._record import Record, window_statistics
 from ._rk4 import state_rates
@@ -23,15 +23,10 @@ class ReferenceSolver(Runner):
     name = "reference"
     description = "scipy DOP853 at tight tolerance on (q, v, radiation states), for verification"
     capabilities = Capabilities(radiation=("state_space", "none"), sampled_controllers=False, order=8)
-
-    def check(self, scene: Scene) -> None:
-        if scene.radiation.method == "convolution":
-            raise SceneError(
-                "solver.method 'reference' needs radiation.method 'state_space' or 'none': with a convolution the "
-                "memory at the intermediate stages is not defined (it would drop the scheme to first order); use "
-                "'beeman' for convolutions"
-            )
-        super().check(scene)
+    radiation_reason = (
+        "with a convolution the memory at the intermediate stages is not defined, which would drop the scheme to first "
+        "order; use 'beeman' for convolutions"
+    )
 
     def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
         return run_reference(controlled, progress)

@@ -22,10 +22,10 @@ from ..compiled.kernels import (
     step_kernel,
 )
 from ..control import ControlledScene
-from ..scene import Capabilities, Scene, SceneError
+from ..scene import Capabilities, SceneError
 from ._fixed_step import FixedStepRunner
 from ._guards import check_rk4
-from ._loop import LoopState, LoopStatus, StepSettings, Store, out_of_bounds, passes_stroke_limit, record_step
+from ._loop import Chunk, LoopState, LoopStatus, StepSettings, Store, out_of_bounds, passes_stroke_limit, record_step
 
 RK4_POLE_LIMIT: float = 2.5
 """Largest |s| dt of the radiation fit's poles RK4 is run with (its stability region reaches 2.79 on the real
@@ -120,15 +120,10 @@ class Rk4(FixedStepRunner):
     description = "classic fourth-order Runge-Kutta on (q, v, radiation states)"
     capabilities = Capabilities(radiation=("state_space", "none"), streaming=True, order=4)
     stages = 2
-
-    def check(self, scene: Scene) -> None:
-        if scene.radiation.method == "convolution":
-            raise SceneError(
-                "solver.method 'rk4' needs radiation.method 'state_space' or 'none': with a convolution the memory "
-                "at the intermediate stages is not defined (it would drop the scheme to first order); use 'beeman' "
-                "for convolutions"
-            )
-        super().check(scene)
+    radiation_reason = (
+        "with a convolution the memory at the intermediate stages is not defined, which would drop the scheme to first "
+        "order; use 'beeman' for convolutions"
+    )
 
     def check_compiled(self, compiled: Any) -> None:
         summary, dt = compiled.radiation_summary, compiled.dt
@@ -143,20 +138,8 @@ class Rk4(FixedStepRunner):
         check_rk4(controlled)
         return None
 
-    def advance(
-        self,
-        prepared: Any,
-        p: Plant,
-        r: RadiationArrays,
-        excitation: np.ndarray,
-        command: np.ndarray,
-        step0: int,
-        settings: StepSettings,
-        state: LoopState,
-        out: Store,
-        work: Workspace,
-    ) -> tuple[int, int]:
-        return rk4_chunk(p, r, excitation, command, step0, settings, state, out, work)
+    def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
+        return rk4_chunk(*chunk)
 
     def solver_attrs(self, out: Store, prepared: Any, n_steps: int) -> dict[str, Any]:
         return {"solver": "rk4"}

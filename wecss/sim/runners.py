@@ -16,6 +16,7 @@ from ._frequency import FREQUENCY as FREQUENCY
 from ._frequency import FrequencyDomain as FrequencyDomain
 from ._linear import LINEAR as LINEAR
 from ._linear import LinearRunner as LinearRunner
+from ._loop import Chunk as Chunk
 from ._loop import LoopState as LoopState
 from ._loop import LoopStatus as LoopStatus
 from ._loop import StepSettings as StepSettings
