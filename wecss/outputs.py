@@ -40,12 +40,16 @@ class Group:
     streamed : bool
         A streamed run (``simulate(scene, path=...)``) writes its variables part by part; False: the group needs
         the whole record (the run is built whole, then written).
+    needs : str or None
+        The runner capability (an attribute of ``wecss.scene.Capabilities``) a runner must have to fill the group;
+        None: every runner fills it.
     """
 
     name: str
     description: str
     default: bool = True
     streamed: bool = True
+    needs: str | None = None
 
 
 GROUPS: tuple[Group, ...] = (
@@ -61,6 +65,13 @@ GROUPS: tuple[Group, ...] = (
         "the record after the run (with amplitudes per wave frequency in frequency-domain runs)",
         default=False,
         streamed=False,
+    ),
+    Group(
+        "hydrodynamics",
+        "the forces beyond the linear hydrodynamics the scene switches on ([hydrodynamics]): body-exact hydrostatics "
+        "and Froude-Krylov, viscous drag, Morison inertia, and their sum added to the linear forces",
+        default=False,
+        needs="terms",
     ),
 )
 
@@ -79,7 +90,8 @@ class Channel:
         Its key in a record (``Record.series[name]``).
     size : str
         Its columns: "nq" (configuration coordinates), "nv" (generalised velocities), "n_pto", "n_h" (hydrodynamic
-        DOFs, stored translations first: ``Record.hydro_order``).
+        DOFs, stored translations first: ``Record.hydro_order``), "n_terms" (per body, each term's force and
+        moment).
     description : str
     groups : tuple of str
         The output groups that read it; a run whose groups read none keeps a one-row scratch array.
@@ -103,6 +115,12 @@ CHANNELS: tuple[Channel, ...] = (
     Channel("f", "n_pto", "PTO forces (controller, saturated, and device spring)", ("pto", "loads")),
     Channel("rad", "n_h", "radiation memory force on the hydrodynamic DOFs", ("radiation", "loads")),
     Channel("exc", "n_h", "excitation on the hydrodynamic DOFs", ("excitation", "loads")),
+    Channel(
+        "terms",
+        "n_terms",
+        "the hydrodynamic terms' forces and moments per body (wecss.compiled._viscous.TERM_ROWS), world axes",
+        ("hydrodynamics",),
+    ),
 )
 """The recorded arrays, in the order the fixed-step kernels hand them to the recorder."""
 
@@ -393,6 +411,20 @@ VARIABLES: tuple[Variable, ...] = (
                 "signed_von_mises",
                 "signed von Mises stress at the hot spot: the sign of the largest principal stress (Eq. 53)",
             ),
+        )
+    ),
+    *(
+        Variable(f"{term}_{part}", "hydrodynamics", ("time", "body", "axis"), f"{long}, {what}", unit, f"{term}_{part}")
+        for term, long in (
+            ("hydrostatic", "body-exact hydrostatic pressure force on the mesh below the free surface (whole)"),
+            ("froude_krylov", "body-exact Froude-Krylov force on the mesh below the free surface (whole)"),
+            ("viscous", "viscous force: body drag, linear damping and Morison drag"),
+            ("morison_inertia", "fluid inertia force on the Morison elements"),
+            ("nonlinear_hydro", "hydrodynamic force added to the linear model's (remainder, drag, Morison)"),
+        )
+        for part, what, unit in (
+            ("force", "world axes", "N"),
+            ("moment", "about the centre of mass, world axes", "N m"),
         )
     ),
     Variable(

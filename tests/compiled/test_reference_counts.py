@@ -27,9 +27,9 @@ def _fresh(kernel):  # type: ignore[no-untyped-def]
 def test_the_per_step_kernels_count_few_references():
     compiled = compile_plant(scene("m4-134"))
     p, w = compiled.plant, workspace(compiled.plant)
-    configure(p, compiled.q0, np.zeros(p.hydro_index.size), w)  # (the real kernels made first: numba imported)
+    configure(p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)  # (the real kernels first: numba imported)
     fresh = {"configure": _fresh(configure), "respond": _fresh(respond)}
-    fresh["configure"](p, compiled.q0, np.zeros(p.hydro_index.size), w)
+    fresh["configure"](p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)
     fresh["respond"](p, np.zeros(p.twists.shape[0]), compiled.radiation.newest, np.zeros(p.pto_kind.size), w)
     for name, kernel in fresh.items():
         irs = list(kernel.inspect_llvm().values())

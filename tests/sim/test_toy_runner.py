@@ -49,7 +49,7 @@ class SemiImplicitEuler(FixedStepRunner):
             hist = block_history(r, z, u_now, buf, pos[0], far, (n1 - 1) % far.shape[0])
             v1 = v + h * acc
             q1 = integrate_configuration(p, q, h * v1)
-            if not configure(p, q1, excitation[k + 1] + hist, work):
+            if not configure(p, q1, excitation[k + 1] + hist, (step0 + k + 1) * h, work):
                 return LoopStatus.NOT_FINITE, n1
             respond(p, v1, r.newest, command, work)
             if not (np.all(np.isfinite(work.acc)) and np.all(np.isfinite(q1))):

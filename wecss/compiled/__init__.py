@@ -5,6 +5,7 @@ from ._compile import CompiledScene as CompiledScene
 from ._compile import clear_compile_cache as clear_compile_cache
 from ._compile import compile_plant as compile_plant
 from ._compile import fit_request as fit_request
+from ._compile import initial_increments as initial_increments
 from ._compile import make_radiation as make_radiation
 from ._compile import make_waves as make_waves
 from ._compile import with_linear_gains as with_linear_gains
@@ -26,3 +27,4 @@ from ._radiation import from_state_space as from_state_space
 from ._radiation import interpolate_matrices as interpolate_matrices
 from ._radiation import memory_response as memory_response
 from ._radiation import no_radiation as no_radiation
+from ._viscous import TERM_ROWS as TERM_ROWS

@@ -28,6 +28,7 @@ from ..hydro import HydroData, without_body_interactions
 from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
 from ..scene import Radiation, Scene, SceneError, SeaState
+from ._kernels import integrate_configuration
 from ._plant import Plant, build_plant
 from ._pto_law import pto_gains
 from ._radiation import (
@@ -39,6 +40,9 @@ from ._radiation import (
     from_state_space,
     no_radiation,
 )
+from ._terms import viscous_arrays, wave_arrays
+from ._viscous import ViscousArrays
+from ._wave_kinematics import no_waves
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,6 +113,15 @@ class CompiledScene:
                 f"{self.dt!r} s"
             )
 
+    def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
+        """The run's initial configuration and generalised velocities: the equilibrium ``q0`` moved by the scene's
+        ``initial.displacement`` (velocity-space increments, on the configuration manifold) and its
+        ``initial.velocity`` (zero by default)."""
+        delta, velocity = initial_increments(self.scene, self.device)
+        if not np.any(delta):
+            return self.q0.copy(), velocity
+        return integrate_configuration(self.plant, self.q0, delta), velocity
+
     @property
     def hydro(self) -> HydroData:
         """The hydrodynamic database (about the centres of mass)."""
@@ -160,6 +173,28 @@ class CompiledScene:
             cached = h.hexdigest()[:32]
             object.__setattr__(self, "_fingerprint", cached)
         return cached
+
+
+def initial_increments(scene: Scene, device: Device) -> tuple[np.ndarray, np.ndarray]:
+    """The scene's ``[initial]`` displacement and velocity as generalised-velocity vectors (nv,).
+
+    Raises
+    ------
+    SceneError
+        For a name that is not one of the device's generalised velocities (the message lists them).
+    """
+    names = list(device.model.velocity_names)
+    out = []
+    for label, values in (("displacement", scene.initial.displacement), ("velocity", scene.initial.velocity)):
+        vector = np.zeros(len(names))
+        for name, value in values.items():
+            if name not in names:
+                raise SceneError(
+                    f"initial.{label}: {name!r} is no generalised coordinate of {device.name}; known: {names}"
+                )
+            vector[names.index(name)] = float(value)
+        out.append(vector)
+    return out[0], out[1]
 
 
 def _device(name: str) -> Device:
@@ -444,7 +479,16 @@ def compile_plant(scene: Scene) -> CompiledScene:
                 "A_inf adjusted so that the memory model reproduces the database's A(omega) over the sea state's "
                 f"frequencies: largest change {change:.2%} of a diagonal A_inf"
             )
-    plant = build_plant(device.model, coupling, device.ptos, hydro.g, added_mass_correction=correction)
+    viscous, extra_mass = _viscous_terms(scene, device, q0, waves, hydro, notes)
+    plant = build_plant(
+        device.model,
+        coupling,
+        device.ptos,
+        hydro.g,
+        added_mass_correction=correction,
+        viscous=viscous,
+        extra_mass=extra_mass,
+    )
     if summary.dropped_entries:
         notes.append(
             f"radiation couplings below {scene.radiation.coupling_threshold:g} of sqrt(peak_ii peak_jj) "
@@ -474,8 +518,30 @@ def compile_plant(scene: Scene) -> CompiledScene:
         bounded=np.asarray(bounded, dtype=np.int64),
         notes=notes,
     )
+    initial_increments(scene, device)  # names checked before the run
     runner.check_compiled(compiled)
     return compiled
+
+
+def _viscous_terms(
+    scene: Scene, device: Device, q0: np.ndarray, waves: wv.WaveComponents | None, hydro: HydroData, notes: list[str]
+) -> tuple[ViscousArrays, np.ndarray | None]:
+    """The scene's viscous terms (``hydrodynamics.drag``) and the Morison elements' added mass, with a note."""
+    hydrodynamics = scene.hydrodynamics
+    if not hydrodynamics.drag:
+        return viscous_arrays(device, q0, hydrodynamics, no_waves(), hydro.rho)
+    ramp = wv.Ramp(scene.sea.ramp_s) if scene.sea.ramp_s > 0 else None
+    wave = wave_arrays(waves, hydro.water_depth, hydro.g, ramp)
+    try:
+        viscous, extra_mass = viscous_arrays(device, q0, hydrodynamics, wave, hydro.rho)
+    except ValueError as err:
+        raise SceneError(str(err)) from None
+    velocity = "relative to the undisturbed fluid" if hydrodynamics.relative_drag else "on the bodies' own velocity"
+    notes.append(
+        f"viscous forces on ({len(device.drag)} body drag entries, {len(device.morison)} Morison elements), "
+        f"{velocity}; Morison added mass taken at the equilibrium immersion"
+    )
+    return viscous, extra_mass
 
 
 def with_linear_gains(compiled: CompiledScene, damping: Any, stiffness: Any) -> CompiledScene:

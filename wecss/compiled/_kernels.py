@@ -25,6 +25,7 @@ from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
 from ._pto_law import pto_control_force_kernel
+from ._viscous import TermsWork, configure_viscous, respond_viscous, terms_work
 
 _SMALL = 1e-8
 
@@ -159,6 +160,7 @@ class Workspace(NamedTuple):
         (n_pto,) PTO rates and forces
     Scratch: force (n_cart,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
     vec, vec2, t_step (3,), r_step, r_new (3, 3)
+    Hydrodynamic terms beyond the linear database: terms (``wecss.compiled._viscous.TermsWork``)
     """
 
     rot: np.ndarray
@@ -195,6 +197,7 @@ class Workspace(NamedTuple):
     r_step: np.ndarray
     r_new: np.ndarray
     t_step: np.ndarray
+    terms: TermsWork
 
 
 @kernel
@@ -214,6 +217,7 @@ def workspace(p: Plant) -> Workspace:
         np.zeros(n_h), np.zeros(n_pto), np.zeros(n_pto),
         np.zeros(n_cart), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
         np.zeros(6), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3),
+        terms_work(p.viscous, n),
     )  # fmt: skip
 
 
@@ -606,12 +610,13 @@ def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
 
 
 @step_kernel
-def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) -> bool:
-    """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` alone, into ``w``:
-    the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of gravity, buoyancy,
-    hydrostatics, the modes' structural stiffness and ``hydro_force`` (n_h,) [N, N m] (excitation plus the memory
-    force fixed by the past, world axes), the PTO strokes and transmissions. Within a step of a predictor-corrector
-    only the velocity changes: :func:`respond` then reuses all of this.
+def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace) -> bool:
+    """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` and the time ``t`` [s]
+    alone, into ``w``: the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of
+    gravity, buoyancy, hydrostatics, the modes' structural stiffness, ``hydro_force`` (n_h,) [N, N m] (excitation
+    plus the memory force fixed by the past, world axes) and the hydrodynamic terms of the scene that depend on the
+    configuration and the waves at ``t`` (``wecss.compiled._viscous``), the PTO strokes and transmissions. Within a
+    step of a predictor-corrector only the velocity changes: :func:`respond` then reuses all of this.
 
     Returns False when M* is not positive definite (a degenerate configuration).
     """
@@ -624,6 +629,7 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, w: Workspace) ->
     hi = p.hydro_index
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
+    configure_viscous(p.viscous, t, w.rot, w.pos, p.cart_start, w.terms, force)
     for i in range(p.com0.shape[0]):
         r3 = p.cart_start[i] + 3
         _rotate(w.rot[i].T, force[r3 : r3 + 3], w.vec)
@@ -716,12 +722,19 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
         total = w.f[k] + end_stop(p, k, x, xdot)
         for c in range(gen.shape[0]):
             gen[c] += w.gmat[k, c] * total
+    respond_viscous(p.viscous, w.rot, w.lin, w.omega, w.b, p.cart_start, w.terms, gen)  # drag (none: no work)
     cholesky_solve(w.factor, gen, w.acc)
 
 
 @kernel
 def accelerations(
-    p: Plant, q: np.ndarray, v: np.ndarray, hydro_force: np.ndarray, newest: np.ndarray, pto_command: np.ndarray
+    p: Plant,
+    q: np.ndarray,
+    v: np.ndarray,
+    hydro_force: np.ndarray,
+    newest: np.ndarray,
+    pto_command: np.ndarray,
+    t: float = 0.0,
 ):
     """Generalised accelerations of the MFM equations (Eq. 46) with all loads (:func:`configure` and
     :func:`respond` in a new workspace; the time loops call those two on their own workspace).
@@ -734,6 +747,8 @@ def accelerations(
         Memory force per unit hydro velocity at this instant (added as ``newest @ u``).
     pto_command : (n_pto,)
         Controller force held over the step [N or N m] (added to the device spring and the linear gains).
+    t : float
+        Time [s] of the waves the scene's hydrodynamic terms see (default 0).
 
     Returns
     -------
@@ -742,7 +757,7 @@ def accelerations(
     spring; the end stops act besides); mass : (nv, nv) M*.
     """
     w = workspace(p)
-    if configure(p, q, hydro_force, w):
+    if configure(p, q, hydro_force, t, w):
         respond(p, v, newest, pto_command, w)
     else:
         w.acc[:] = np.nan

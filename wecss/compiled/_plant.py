@@ -22,6 +22,7 @@ from ..multibody import (
     integrate,
     kinematics,
 )
+from ._viscous import ViscousArrays, no_viscous
 
 
 class PtoKind(IntEnum):
@@ -79,6 +80,9 @@ class Plant(NamedTuple):
         centres of mass) [N s/m, N m s/rad], or (0, 0) for a device without them (the time loop then skips them;
         :func:`mooring_damping_matrix` gives the full matrix either way); their springs are in
         ``hydrostatic_stiffness``
+    Hydrodynamic terms beyond the linear database
+        viscous : ``wecss.compiled._viscous.ViscousArrays`` (body drag, linear damping, Morison elements, and the
+        incident wave they see; empty arrays when the scene asks for none)
     """
 
     order: np.ndarray
@@ -125,6 +129,7 @@ class Plant(NamedTuple):
     pto_stop_damping: np.ndarray
     joint_damping: np.ndarray
     mooring_damping: np.ndarray
+    viscous: ViscousArrays
 
 
 def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
@@ -252,12 +257,16 @@ def build_plant(
     damping: np.ndarray | None = None,
     stiffness: np.ndarray | None = None,
     added_mass_correction: np.ndarray | None = None,
+    viscous: ViscousArrays | None = None,
+    extra_mass: np.ndarray | None = None,
 ) -> Plant:
     """Flat arrays of ``model`` with its hydrostatics (None: none), gravity ``g`` [m/s^2] and PTOs.
 
     ``damping`` and ``stiffness`` (one per PTO) are the gains of a linear controller applied inside the
     equations of motion (default zero: the controller's force is held over each step instead).
     ``added_mass_correction`` (n_h, n_h) is added to A_inf (see ``_radiation.added_mass_correction``).
+    ``viscous``: the scene's viscous terms (default none), ``extra_mass`` (n_cart, n_cart) a further added mass
+    (the Morison elements', ``wecss.compiled._terms.viscous_arrays``).
     """
     n = len(model.bodies)
     inertia = np.array([b.inertia for b in model.bodies])
@@ -276,6 +285,8 @@ def build_plant(
         mooring_h = np.zeros((0, 0))
     n_pto = len(ptos)
     total = rigid + added
+    if extra_mass is not None:
+        total = total + extra_mass
     active = moving_rows(model)
     return Plant(
         **_tree_arrays(model),
@@ -294,6 +305,7 @@ def build_plant(
         pto_stiffness=np.zeros(n_pto) if stiffness is None else np.asarray(stiffness, dtype=float),
         joint_damping=model.joint_damping,
         mooring_damping=np.ascontiguousarray(mooring_h),
+        viscous=no_viscous() if viscous is None else viscous,
     )
 
 

@@ -14,9 +14,19 @@ from scipy.linalg import eig
 from ..constants import GRAVITY
 from ..hydro import HydroData, is_wecss_database, read_bemio, read_capytaine, read_wamit
 from ..hydro import load as load_hydro
-from ..multibody import ActuatorPTO, Dynamics, HydroCoupling, JointPTO, Mooring, Multibody, StaticModel
+from ..multibody import (
+    ActuatorPTO,
+    BodyDrag,
+    Dynamics,
+    HydroCoupling,
+    JointPTO,
+    Mooring,
+    MorisonElement,
+    Multibody,
+    StaticModel,
+)
 from ._members import Member, read_members
-from ._spec import DeviceSpecError, build_model, build_moorings, hydro_source, read_spec
+from ._spec import DeviceSpecError, build_model, build_moorings, build_viscous, hydro_source, read_spec
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,6 +50,10 @@ class Device:
         Beam members for stress recovery (empty when the spec declares none).
     moorings : tuple of Mooring
         Linear moorings (empty when the spec declares none).
+    drag : tuple of BodyDrag
+        Viscous drag and linear damping on bodies' DOFs (act when a scene asks for ``hydrodynamics.drag``).
+    morison : tuple of MorisonElement
+        Morison cylinders (the same).
     hydro_options : mapping
         Keyword arguments of the reader of the ``hydro`` file (the spec's ``[hydro_options]``).
     """
@@ -54,6 +68,8 @@ class Device:
     members: tuple[Member, ...] = ()
     moorings: tuple[Mooring, ...] = ()
     hydro_options: Mapping[str, Any] = field(default_factory=dict)
+    drag: tuple[BodyDrag, ...] = ()
+    morison: tuple[MorisonElement, ...] = ()
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -75,12 +91,13 @@ class Device:
         except ValueError as err:
             raise DeviceSpecError(str(err)) from None
         moorings = build_moorings(spec, model)
+        drag, morison = build_viscous(spec, model)
         options = spec.get("hydro_options", {})
         if not isinstance(options, Mapping):
             raise DeviceSpecError(f"device {spec['name']!r}: hydro_options must be a table; got {options!r}")
         return cls(
             spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings,
-            dict(options),
+            dict(options), drag, morison,
         )  # fmt: skip
 
     def member(self, name: str) -> Member:

@@ -32,6 +32,12 @@ Spec layout (TOML; the same keys as a dict)::
     [[moorings]]                # a linear mooring (optional): body, stiffness = {Surge = k, ...} [N/m, N m/rad],
     ...                         # damping = {Surge = c, ...} [N s/m, N m s/rad], about the body's centre of mass
                                 # (world axes), slack in the reference configuration (wecss.multibody.Mooring)
+    [[drag]]                    # viscous drag on a body's DOFs, body axes (optional; acts with the scene's
+    ...                         # hydrodynamics.drag): body, coefficient = {Heave = c} [N s^2/m^2, N m s^2/rad^2]
+                                # and/or cd = {Heave = 1.0} with area = {Heave = A} [m^2] (c = rho Cd A / 2), linear
+                                # = {Heave = b} [N s/m, N m s/rad] (wecss.multibody.BodyDrag)
+    [[morison]]                 # a Morison cylinder (optional; with hydrodynamics.drag): body, start, end [m] (world,
+    ...                         # reference configuration), diameter [m], cd, ca (default 1), segments (default 10)
 """
 
 from __future__ import annotations
@@ -41,10 +47,11 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from ..multibody import ActuatorPTO, Body, Joint, JointPTO, Mooring, Multibody
+from ..multibody import ActuatorPTO, Body, BodyDrag, Joint, JointPTO, Mooring, MorisonElement, Multibody
 
 _TOP_KEYS = {
     "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
+    "drag", "morison",
 }  # fmt: skip
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body", "modes"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
@@ -202,3 +209,34 @@ def build_moorings(spec: Mapping[str, Any], model: Multibody) -> tuple[Mooring, 
             raise DeviceSpecError(f"{where}: {err}") from None
         out.append(mooring)
     return tuple(out)
+
+
+def build_viscous(spec: Mapping[str, Any], model: Multibody) -> tuple[tuple[BodyDrag, ...], tuple[MorisonElement, ...]]:
+    """The spec's ``[[drag]]`` and ``[[morison]]`` entries (empty when it has none).
+
+    Raises
+    ------
+    DeviceSpecError
+        On unknown or missing keys, unknown bodies, bad values, or two drag entries on one body (the message says
+        which entry).
+    """
+    out: dict[str, list[Any]] = {"drag": [], "morison": []}
+    for key, kind in (("drag", BodyDrag), ("morison", MorisonElement)):
+        entries = spec.get(key, [])
+        if not isinstance(entries, list):
+            raise DeviceSpecError(f"device {spec['name']!r}: {key} must be a list of tables ([[{key}]])")
+        for k, entry in enumerate(entries):
+            where = f"device {spec['name']!r}, {key}[{k}]"
+            if not isinstance(entry, Mapping):
+                raise DeviceSpecError(f"{where}: must be a table; got {entry!r}")
+            try:
+                item = kind.from_spec(entry)
+                model.body(item.body)
+            except (TypeError, ValueError, KeyError) as err:
+                raise DeviceSpecError(f"{where}: {err}") from None
+            out[key].append(item)
+    bodies = [d.body for d in out["drag"]]
+    twice = sorted({b for b in bodies if bodies.count(b) > 1})
+    if twice:
+        raise DeviceSpecError(f"device {spec['name']!r}: more than one [[drag]] entry for bodies {twice}")
+    return tuple(out["drag"]), tuple(out["morison"])

@@ -16,10 +16,12 @@ Feedback = Callable[[int, np.ndarray, np.ndarray, Callable[[], np.ndarray]], np.
 from the strokes (from the equilibrium) and rates at step k; ``state()`` gives the model's state x at step k."""
 
 
-def open_loop(model: LinearModel, dt: float, hold: str, force: np.ndarray, rows: np.ndarray) -> np.ndarray:
+def open_loop(
+    model: LinearModel, dt: float, hold: str, force: np.ndarray, rows: np.ndarray, x0: np.ndarray | None = None
+) -> np.ndarray:
     """Outputs ``rows @ x`` (n_t, n_out) at every step of the exact ``hold`` discretisation for the generalised
-    forces ``force`` (n_t, nv) [one row per step of ``dt`` s], from rest."""
-    return run(model.modal_form, model.modal_steps(dt, hold), force, rows)
+    forces ``force`` (n_t, nv) [one row per step of ``dt`` s], from the state ``x0`` (default: rest)."""
+    return run(model.modal_form, model.modal_steps(dt, hold), force, rows, x0)
 
 
 def closed_loop(
@@ -29,10 +31,12 @@ def closed_loop(
     force: np.ndarray,
     rows: np.ndarray,
     feedback: Feedback,
+    x0: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Outputs ``rows @ x`` (n_t, n_out) and the PTO forces (n_t, n_pto), the force at row k acting over the step
     from k to k + 1 (the last row's is zero): ``feedback`` is called at every step but the last and its force held
-    (zero-order hold) over the step, while the generalised forces ``force`` keep the ``hold`` given."""
+    (zero-order hold) over the step, while the generalised forces ``force`` keep the ``hold`` given; from the state
+    ``x0`` (default: rest)."""
     form, steps = model.modal_form, model.modal_steps(dt, hold)
     nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
     g = model.pto_jacobian
@@ -50,6 +54,9 @@ def closed_loop(
     z = np.zeros((n_t, form.n_modes), dtype=complex)
     free = np.zeros((n_t, form.free.size))
     command = np.zeros((n_t, n_pto))
+    if x0 is not None:
+        z[0] = form.inverse @ np.asarray(x0, dtype=float)[form.rest]
+        free[0] = np.asarray(x0, dtype=float)[form.free]
 
     def state_at(k: int) -> np.ndarray:
         x = np.zeros(model.n_states)

@@ -25,3 +25,5 @@ from ._statics import StaticModel as StaticModel
 from ._tree import Body as Body
 from ._tree import Joint as Joint
 from ._tree import Multibody as Multibody
+from ._viscous import BodyDrag as BodyDrag
+from ._viscous import MorisonElement as MorisonElement

@@ -3,6 +3,8 @@ or as frozen (hashable) dataclasses and validated on construction; and the regis
 ``solver.method`` names."""
 
 from ._errors import SceneError as SceneError
+from ._hydrodynamics import Hydrodynamics as Hydrodynamics
+from ._hydrodynamics import Initial as Initial
 from ._runners import RADIATION_METHODS as RADIATION_METHODS
 from ._runners import Capabilities as Capabilities
 from ._runners import Runner as Runner

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from importlib.metadata import entry_points
 from typing import Any
 
+from ..outputs import GROUPS
 from ._errors import SceneError
 
 ENTRY_POINT_GROUP = "wecss.runners"
@@ -48,6 +49,14 @@ class Capabilities:
         Optional ``solver`` fields (default None) it reads; another runner refuses a scene that sets them.
     transient : bool
         It starts from rest at the equilibrium and applies the sea's start ramp (False: a steady state, no ramp).
+    initial_state : bool
+        It starts from the scene's ``[initial]`` state (a departure from the equilibrium) when one is given.
+    terms : bool
+        It records the hydrodynamic terms' forces (the output group ``hydrodynamics``).
+    hydrodynamics : tuple of str
+        The forces beyond the linear database it computes (``[hydrodynamics]``): "body-exact" (the meshes'
+        hydrostatics and Froude-Krylov force), "drag" (the viscous forces: exactly, or linearised by a linear
+        runner).
     order : int
         Order of accuracy in the step (0: not a time stepper, e.g. an exact solution).
     """
@@ -59,6 +68,9 @@ class Capabilities:
     free_base: bool = True
     options: tuple[str, ...] = ()
     transient: bool = True
+    initial_state: bool = False
+    terms: bool = False
+    hydrodynamics: tuple[str, ...] = ()
     order: int = 2
 
     def __post_init__(self) -> None:
@@ -105,6 +117,32 @@ class Runner(ABC):
             raise SceneError(
                 f"solver.method {self.name!r} needs radiation.method {' or '.join(map(repr, caps.radiation))}{reason}; "
                 f"got {scene.radiation.method!r}"
+            )
+        hydro = scene.hydrodynamics
+        for wanted, on in (("body-exact", hydro.body_exact), ("drag", hydro.drag)):
+            if on and wanted not in caps.hydrodynamics:
+                takers = [name for name in available_runners() if wanted in runner(name).capabilities.hydrodynamics]
+                raise SceneError(
+                    f"solver.method {self.name!r} does not compute the {wanted} hydrodynamics the scene asks for "
+                    f"([hydrodynamics]); these do: {', '.join(takers) or 'none'}"
+                )
+        for group in GROUPS:
+            if group.name in scene.outputs.variables and group.needs and not getattr(caps, group.needs):
+                takers = [name for name in available_runners() if getattr(runner(name).capabilities, group.needs)]
+                raise SceneError(
+                    f"outputs.variables: solver.method {self.name!r} does not fill the group {group.name!r}; these "
+                    f"do: {', '.join(takers) or 'none'}"
+                )
+        if "hydrodynamics" in scene.outputs.variables and not hydro.nonlinear:
+            raise SceneError(
+                "outputs.variables: 'hydrodynamics' holds the forces [hydrodynamics] switches on, and the scene "
+                "switches none on (hydrostatics, froude_krylov = 'body-exact' or drag = true)"
+            )
+        if not scene.initial.at_rest and not caps.initial_state:
+            takers = [name for name in available_runners() if runner(name).capabilities.initial_state]
+            raise SceneError(
+                f"solver.method {self.name!r} starts from the equilibrium at rest; [initial] needs one of "
+                f"{', '.join(takers) or 'none'}"
             )
         for option in OPTIONAL_SOLVER_FIELDS:
             if getattr(scene.solver, option) is not None and option not in caps.options:

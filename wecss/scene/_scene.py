@@ -35,7 +35,9 @@ from pathlib import Path
 from typing import Any
 
 from ..outputs import DEFAULT_GROUPS, GROUP_NAMES
+from ._checks import check_choice, check_keys, check_types
 from ._errors import SceneError
+from ._hydrodynamics import Hydrodynamics, Initial
 from ._parameters import Parameters
 from ._runners import RADIATION_METHODS, Runner, runner
 
@@ -107,26 +109,6 @@ def _is_zero(value: float | str) -> bool:
     return not isinstance(value, bool) and value == 0
 
 
-def _types(section: str, values: dict[str, tuple[Any, type]]) -> None:
-    """Check the types of fields read from TOML (bools are not integers here)."""
-    for key, (value, kind) in values.items():
-        wrong = not isinstance(value, kind) or (kind is int and isinstance(value, bool))
-        if wrong:
-            raise SceneError(f"{section}.{key} must be {kind.__name__}; got {value!r} ({type(value).__name__})")
-
-
-def _check_keys(section: str, data: dict[str, Any], cls: type) -> None:
-    known = [f.name for f in fields(cls)]
-    unknown = sorted(set(data) - set(known))
-    if unknown:
-        raise SceneError(f"[{section}]: unknown keys {unknown}; accepted: {', '.join(known)}")
-
-
-def _choice(name: str, value: str, accepted: tuple[str, ...]) -> None:
-    if value not in accepted:
-        raise SceneError(f"{name}: unknown {value!r}; accepted: {', '.join(accepted)}")
-
-
 @dataclass(frozen=True)
 class DeviceChoice:
     """The device (catalogue name or spec TOML path) and, optionally, another hydrodynamic database."""
@@ -135,9 +117,9 @@ class DeviceChoice:
     hydro: str | None = None
 
     def __post_init__(self) -> None:
-        _types("device", {"name": (self.name, str)})
+        check_types("device", {"name": (self.name, str)})
         if self.hydro is not None:
-            _types("device", {"hydro": (self.hydro, str)})
+            check_types("device", {"hydro": (self.hydro, str)})
 
 
 @dataclass(frozen=True)
@@ -186,7 +168,7 @@ class SeaState:
     file: str | None = None
 
     def __post_init__(self) -> None:
-        _choice("sea.kind", self.kind, SEA_KINDS)
+        check_choice("sea.kind", self.kind, SEA_KINDS)
         if self.kind in ("regular", "jonswap", "pierson-moskowitz"):
             if self.period is None or not 0 < self.period < math.inf:
                 raise SceneError(
@@ -208,7 +190,7 @@ class SeaState:
             raise SceneError(f"sea.period must be positive and finite [s] (or absent); got {self.period!r}")
         if not 0 <= self.energy_threshold < 1:
             raise SceneError(f"sea.energy_threshold is a share in [0, 1); got {self.energy_threshold!r}")
-        _types(
+        check_types(
             "sea",
             {"kind": (self.kind, str), "seed": (self.seed, int), "periodic": (self.periodic, bool)},
         )
@@ -253,7 +235,7 @@ class ControllerChoice:
     dt: float | str | None = None
 
     def __post_init__(self) -> None:
-        _types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
+        check_types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
         object.__setattr__(self, "parameters", Parameters(self.parameters))
 
 
@@ -308,9 +290,9 @@ class Solver:
     added_mass: str | None = None
 
     def __post_init__(self) -> None:
-        _types("solver", {"method": (self.method, str)})
+        check_types("solver", {"method": (self.method, str)})
         if self.added_mass is not None:
-            _choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
+            check_choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
         if self.added_mass == "explicit" or self.method == EXPLICIT_RUNNER:
             if self.method not in ("beeman", EXPLICIT_RUNNER):
                 raise SceneError(
@@ -326,7 +308,7 @@ class Solver:
             object.__setattr__(self, "added_mass", "explicit")
         runner(self.method)  # a registered runner (SceneError listing them otherwise)
         if self.hold is not None:
-            _choice("solver.hold", self.hold, LINEAR_HOLDS)
+            check_choice("solver.hold", self.hold, LINEAR_HOLDS)
         if not 0 < self.corrector_tol < 1:
             raise SceneError(f"solver.corrector_tol must lie in (0, 1); got {self.corrector_tol!r}")
         if not (isinstance(self.max_corrector_iterations, int) and self.max_corrector_iterations >= 1):
@@ -383,15 +365,15 @@ class Radiation:
     body_to_body: bool = True
 
     def __post_init__(self) -> None:
-        _types(
+        check_types(
             "radiation",
             {
                 "consistent_added_mass": (self.consistent_added_mass, bool),
                 "body_to_body": (self.body_to_body, bool),
             },
         )
-        _choice("radiation.method", self.method, RADIATION_METHODS)
-        _choice("radiation.fit", self.fit, ("era-mimo", "prony", "era"))
+        check_choice("radiation.method", self.method, RADIATION_METHODS)
+        check_choice("radiation.fit", self.fit, ("era-mimo", "prony", "era"))
         if not 0 <= self.coupling_threshold < 1:
             raise SceneError(f"radiation.coupling_threshold is a share in [0, 1); got {self.coupling_threshold!r}")
         if not 0 <= self.band < 1:
@@ -423,10 +405,10 @@ class Outputs:
     def __post_init__(self) -> None:
         if isinstance(self.variables, str) or not isinstance(self.variables, list | tuple):
             raise SceneError(f"outputs.variables must be a list of groups; got {self.variables!r}")
-        _types("outputs", {"statistics_only": (self.statistics_only, bool)})
+        check_types("outputs", {"statistics_only": (self.statistics_only, bool)})
         object.__setattr__(self, "variables", tuple(self.variables))
         for v in self.variables:
-            _choice("outputs.variables", v, OUTPUT_GROUPS)
+            check_choice("outputs.variables", v, OUTPUT_GROUPS)
         if not self.variables and not self.statistics_only:
             raise SceneError("outputs.variables is empty: ask for at least one group or set statistics_only = true")
         if not (isinstance(self.every, int) and self.every >= 1):
@@ -442,6 +424,8 @@ _SECTIONS: dict[str, type] = {
     "solver": Solver,
     "radiation": Radiation,
     "outputs": Outputs,
+    "hydrodynamics": Hydrodynamics,
+    "initial": Initial,
 }
 
 
@@ -461,6 +445,8 @@ class Scene:
     solver: Solver = field(default_factory=Solver)
     radiation: Radiation = field(default_factory=Radiation)
     outputs: Outputs = field(default_factory=Outputs)
+    hydrodynamics: Hydrodynamics = field(default_factory=Hydrodynamics)
+    initial: Initial = field(default_factory=Initial)
 
     def __post_init__(self) -> None:
         dt = self.dt
@@ -546,7 +532,7 @@ class Scene:
             if not isinstance(data.get(section, {}), dict):
                 raise SceneError(f"[{section}] must be a table of keys; got {data[section]!r}")
             values = dict(data.get(section, {}))
-            _check_keys(section, values, kind)
+            check_keys(section, values, kind)
             if base is not None:
                 for key in ("file", "name", "hydro"):
                     value = values.get(key)

@@ -67,6 +67,7 @@ def beeman_chunk(
     rad = np.empty(u_now.shape[0])
     for k in range(n_steps):
         n1 = step0 + k + 1
+        t1 = n1 * h
         hist = block_history(r, z, u_now, buf, pos[0], far, (n1 - 1) % far.shape[0])
         base = excitation[k + 1] + hist
         dv = h * v + h * h / 6.0 * (4.0 * acc - acc_prev)
@@ -75,7 +76,7 @@ def beeman_chunk(
             return LoopStatus.NOT_FINITE, n1
         if out_of_bounds(q1, bounded, bound):
             return LoopStatus.OUT_OF_BOUNDS, n1
-        if not configure(p, q1, base, w):
+        if not configure(p, q1, base, t1, w):
             return LoopStatus.NOT_FINITE, n1
         for c in range(nv):
             known[c] = v[c] + h / 6.0 * (5.0 * acc[c] - acc_prev[c])
@@ -108,7 +109,7 @@ def beeman_chunk(
             vc[:] = v + h * acc
             for _ in range(max_iter):
                 q1 = integrate_configuration(p, q, 0.5 * h * (v + vc))
-                configure(p, q1, base, w)
+                configure(p, q1, base, t1, w)
                 respond(p, vc, r.newest, command, w)
                 a_v = w.acc.copy()
                 residual = vc - v - 0.5 * h * (acc + a_v)
@@ -117,7 +118,7 @@ def beeman_chunk(
                     eps = 1e-7 * (1.0 + abs(vc[c]))
                     vp = vc.copy()
                     vp[c] += eps
-                    configure(p, integrate_configuration(p, q, 0.5 * h * (v + vp)), base, w)
+                    configure(p, integrate_configuration(p, q, 0.5 * h * (v + vp)), base, t1, w)
                     respond(p, vp, r.newest, command, w)
                     jac[:, c] -= 0.5 * h * (w.acc - a_v) / eps
                 count += nv + 1
@@ -136,7 +137,7 @@ def beeman_chunk(
                 return LoopStatus.NOT_FINITE, n1
             if out_of_bounds(q1, bounded, bound):
                 return LoopStatus.OUT_OF_BOUNDS, n1
-            configure(p, q1, base, w)
+            configure(p, q1, base, t1, w)
             respond(p, vc, r.newest, command, w)
             a1[:] = w.acc
             count += 1
@@ -158,7 +159,7 @@ def beeman_chunk(
         pto_now[2] = f1
         if passes_stroke_limit(p, x1):
             return LoopStatus.STROKE_LIMIT, n1
-        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, excitation[k + 1]))
+        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, excitation[k + 1], w.terms.out.reshape(-1)))
     return LoopStatus.OK, step0 + n_steps
 
 
@@ -188,7 +189,9 @@ class Beeman(FixedStepRunner):
     description = (
         "Beeman predictor-corrector (M4 paper Eq. 52), implicit added mass, trapezoidal fallback on stiff steps"
     )
-    capabilities = Capabilities(streaming=True, order=2)
+    capabilities = Capabilities(
+        streaming=True, initial_state=True, hydrodynamics=("body-exact", "drag"), terms=True, order=2
+    )
 
     def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
         return beeman_chunk(*chunk)

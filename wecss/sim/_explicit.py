@@ -28,7 +28,7 @@ import numpy as np
 from ..compiled import Plant, RadiationArrays
 from ..compiled.kernels import accelerations, integrate_configuration, kernel, kinematics
 from ..control import ControlledScene
-from ..scene import SceneError
+from ..scene import Capabilities, SceneError
 from ._beeman import Beeman
 from ._loop import (
     ACCELERATION_FLOOR,
@@ -77,11 +77,12 @@ def explicit_accelerations(
     newest: np.ndarray,
     command: np.ndarray,
     guess: np.ndarray,
+    t: float,
 ):
     """Accelerations with the rigid mass on the left and the added-mass force of the accelerations ``guess`` on
     the right (``p``: the rigid plant of :func:`split_added_mass`, ``added`` its A_inf); the other arguments and
     the returns as ``wecss.compiled.kernels.accelerations``."""
-    a, u, x, xd, f, mass = accelerations(p, q, v, hydro_force, newest, command)
+    a, u, x, xd, f, mass = accelerations(p, q, v, hydro_force, newest, command, t)
     _rot, _pos, b, bdot, _omega = kinematics(p, q, v)
     act = p.active
     nv = v.shape[0]
@@ -107,6 +108,7 @@ def beeman_explicit_chunk(
     settings: StepSettings,
     state: LoopState,
     out: Store,
+    terms: np.ndarray,
 ) -> tuple[int, int]:
     """Beeman steps as ``beeman_chunk``, with the added mass explicit (see the module docstring): one fixed-point
     iteration updates the corrector velocity and the added-mass force from the last accelerations, until their
@@ -117,6 +119,7 @@ def beeman_explicit_chunk(
     n_steps = excitation.shape[0] - 1
     for k in range(n_steps):
         n1 = step0 + k + 1
+        t1 = n1 * h
         hist = block_history(r, z, u_now, buf, pos[0], far, (n1 - 1) % far.shape[0])
         base = excitation[k + 1] + hist
         q1 = integrate_configuration(p, q, h * v + h * h / 6.0 * (4.0 * acc - acc_prev))
@@ -127,12 +130,12 @@ def beeman_explicit_chunk(
         known = v + h / 6.0 * (5.0 * acc - acc_prev)
         # first evaluation: the predicted velocity, and the added-mass force of the last step's accelerations
         vc = v + h / 2.0 * (3.0 * acc - acc_prev)
-        a1, u1, x1, xd1, f1, _mass = explicit_accelerations(p, added, q1, vc, base, r.newest, command, acc)
+        a1, u1, x1, xd1, f1, _mass = explicit_accelerations(p, added, q1, vc, base, r.newest, command, acc, t1)
         converged = False
         count = 1
         for _ in range(max_iter):
             vc = known + h / 3.0 * a1
-            a_new, u1, x1, xd1, f1, _mass = explicit_accelerations(p, added, q1, vc, base, r.newest, command, a1)
+            a_new, u1, x1, xd1, f1, _mass = explicit_accelerations(p, added, q1, vc, base, r.newest, command, a1, t1)
             count += 1
             change = np.max(np.abs(a_new - a1))
             a1 = a_new
@@ -157,7 +160,7 @@ def beeman_explicit_chunk(
         pto_now[2] = f1
         if passes_stroke_limit(p, x1):
             return LoopStatus.STROKE_LIMIT, n1
-        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, excitation[k + 1]))
+        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, excitation[k + 1], terms))
     return LoopStatus.OK, step0 + n_steps
 
 
@@ -167,6 +170,7 @@ class BeemanExplicit(Beeman):
 
     name = "beeman-explicit"
     description = "Beeman with the M4 paper's explicit added mass, iterated with the corrector (replication option)"
+    capabilities = Capabilities(streaming=True, initial_state=True, order=2)
 
     def prepare(self, controlled: ControlledScene) -> Any:
         """The rigid plant, the added mass and the iteration's spectral radius at the equilibrium; refuses a scene
@@ -185,7 +189,10 @@ class BeemanExplicit(Beeman):
     def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
         rigid, added, _ = prepared
         c = chunk
-        return beeman_explicit_chunk(rigid, added, c.r, c.excitation, c.command, c.step0, c.settings, c.state, c.out)
+        terms = c.work.terms.out.reshape(-1)  # the paper's method computes none (its capabilities say so)
+        return beeman_explicit_chunk(
+            rigid, added, c.r, c.excitation, c.command, c.step0, c.settings, c.state, c.out, terms
+        )
 
     def solver_attrs(self, out: Store, prepared: Any, n_steps: int) -> dict[str, Any]:
         return {

@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import CompiledScene, Plant, RadiationArrays
-from ..compiled.kernels import accelerations, workspace
+from ..compiled import TERM_ROWS, CompiledScene, Plant, RadiationArrays
+from ..compiled.kernels import configure, respond, workspace
 from ..control import ControlledScene
 from ..outputs import CHANNEL_NAMES
 from ..scene import Capabilities, Runner
@@ -55,7 +55,7 @@ class FixedStepRunner(Runner):
     :meth:`failure` (the words for a status of theirs).
     """
 
-    capabilities = Capabilities(streaming=True)
+    capabilities = Capabilities(streaming=True, initial_state=True)
     stages: int = 1
     """Excitation rows per step that :meth:`advance` reads: 1 (the steps' times), 2 (also the half steps)."""
 
@@ -144,7 +144,14 @@ def _diverged(
 def _sizes(controlled: ControlledScene) -> dict[str, int]:
     """Columns per channel size name (``wecss.outputs.Channel.size``)."""
     p = controlled.plant
-    return {"nq": controlled.q0.size, "nv": p.twists.shape[0], "n_pto": p.pto_kind.size, "n_h": p.hydro_index.size}
+    n_terms = len(TERM_ROWS) * 6 * p.com0.shape[0]
+    return {
+        "nq": controlled.q0.size,
+        "nv": p.twists.shape[0],
+        "n_pto": p.pto_kind.size,
+        "n_h": p.hydro_index.size,
+        "n_terms": n_terms,
+    }
 
 
 def run_fixed_step(
@@ -171,11 +178,16 @@ def run_fixed_step(
         scene.outputs.variables,
         {"rad": hydro_order, "exc": hydro_order},
     )
-    q = controlled.q0.copy()
-    v = np.zeros(p.twists.shape[0])
+    q, v = controlled.initial_state()
     command = np.zeros(n_pto)
     exc0 = controlled.excitation_at(np.zeros(1))[0]
-    a0, u0, x0, xd0, f0, _ = accelerations(p, q, v, exc0, r.newest, command)
+    work = workspace(p)
+    if configure(p, q, exc0, 0.0, work):  # the initial state's accelerations and outputs
+        respond(p, v, r.newest, command, work)
+    else:
+        work.acc[:] = np.nan
+    a0, u0, x0, xd0, f0 = (work.acc.copy(), work.u.copy(), work.stroke.copy(), work.xdot.copy(), work.f.copy())
+    terms0 = work.terms.out.reshape(-1).copy()
     acc, acc_prev = a0.copy(), a0.copy()
     z = np.zeros(r.poles.size, dtype=complex)
     u_now = u0.copy()
@@ -192,7 +204,8 @@ def run_fixed_step(
         scene.solver.angle_bound,
     )
     if n_save:  # the row at step 0: the initial state (no memory force yet)
-        first = {"q": q, "v": v, "a": a0, "x": x0, "xd": xd0, "f": f0, "rad": np.zeros(u0.size), "exc": exc0}
+        first = {"q": q, "v": v, "a": a0, "x": x0, "xd": xd0, "f": f0, "exc": exc0, "terms": terms0}
+        first["rad"] = np.zeros(u0.size)
         for name, rows, order in zip(CHANNEL_NAMES, out.series, out.columns, strict=True):
             rows[0] = first[name][order]
         out.save_index[0] = 1
@@ -205,11 +218,10 @@ def run_fixed_step(
         return np.concatenate([q, v, z.real, z.imag])
 
     bar = Progress(n, progress)
-    work = workspace(p)
     start = _time.perf_counter()
     excitation = _Excitation(controlled, runner.stages)  # (timed: it is part of the loop's work)
     done = 0
-    calm = controlled.excitation is None
+    calm = controlled.excitation is None and scene.initial.at_rest  # no input: no motion may start
     written, next_part = 0, STREAM_STEPS  # saved rows handed to the stream; the step of its next part
     streaming = 0.0  # time spent deriving and writing the parts (not the loop's)
 

@@ -14,7 +14,7 @@ from ..linear import linearize, response_amplitudes
 from ..scene import Capabilities, Runner
 from ..waves import evaluate
 from ._load_amplitudes import Spectral
-from ._record import Record, window_statistics
+from ._record import Record, no_terms, window_statistics
 
 
 class FrequencyDomain(Runner):
@@ -84,6 +84,7 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
         "f": pto_force[keep],
         "rad": signal(memory_hat, saved),
         "exc": signal(coefficients, saved),
+        "terms": no_terms(compiled, saved.size),
     }
     record = Record(
         time=saved,

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..compiled import pto_control_force, saturate
+from ..compiled import initial_increments, pto_control_force, saturate
 from ..compiled.kernels import end_stop_force
 from ..control import ControlledScene, compile_scene
 from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
@@ -19,7 +19,7 @@ from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene
 from ._control import ControlLoop
 from ._dataset import build_result
 from ._errors import PtoLimitExceeded
-from ._record import Record, limit_counts, window_statistics
+from ._record import Record, limit_counts, no_terms, window_statistics
 
 
 class LinearRunner(Runner):
@@ -27,7 +27,9 @@ class LinearRunner(Runner):
 
     name = "linear"
     description = "the equations linearised about the equilibrium, stepped exactly in modal coordinates"
-    capabilities = Capabilities(radiation=("state_space",), free_base=False, options=("hold",), order=2)
+    capabilities = Capabilities(
+        radiation=("state_space",), free_base=False, options=("hold",), initial_state=True, order=2
+    )
     radiation_reason = "the linear model carries the radiation memory as states"
 
     def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
@@ -93,8 +95,9 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     applied = np.zeros((time.size, n_pto))  # the controller's force held over each step (not folded in)
     wanted = np.zeros((time.size, n_pto))  # what the controller asked for, before the force limit
     closed = not (compiled.linear_controller or n_pto == 0)
+    x0 = _initial_state(compiled, model)
     if not closed:
-        y = open_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation))
+        y = open_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation), x0)
         stroke = stroke0[None] + y[:, :nv] @ g.T
         wanted = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, stroke, y[:, nv : 2 * nv] @ g.T)
         closed = limited and bool(
@@ -104,7 +107,7 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
             model = model.with_pto_gains(0.0, 0.0)
     if closed:
         feedback = _feedback(compiled, model, applied, wanted)
-        y, command = closed_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation), feedback)
+        y, command = closed_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation), feedback, x0)
         # recorded at t_k, as by the nonlinear simulator: the force that acted over the step ending at t_k
         force[1:] += command[:-1] @ g
         applied = np.concatenate([np.zeros((1, n_pto)), applied[:-1]])
@@ -128,7 +131,7 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
         solver["solver"] += "; PTO limits as a force held over each step"
     series = {
         "q": (compiled.q0[None] + xi)[keep], "v": rate[keep], "a": acc, "x": stroke[keep], "xd": stroke_rate[keep],
-        "f": pto_force[keep], "rad": rad, "exc": exc[keep],
+        "f": pto_force[keep], "rad": rad, "exc": exc[keep], "terms": no_terms(compiled, acc.shape[0]),
     }  # fmt: skip
     return Record(
         time=time[keep],
@@ -138,6 +141,18 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
         solver=solver,
         limits=limit_counts(stroke[1:], wanted[1:], (p.pto_force_limit, p.pto_stroke_limit)),
     )
+
+
+def _initial_state(compiled: ControlledScene, model: LinearModel) -> np.ndarray | None:
+    """The linear model's initial state for the scene's ``[initial]`` (None: at rest in the equilibrium): the
+    displacement and velocity increments as xi and xi_dot, no radiation memory."""
+    if compiled.scene.initial.at_rest:
+        return None
+    delta, velocity = initial_increments(compiled.scene, compiled.device)
+    nv = model.mass.shape[0]
+    x0 = np.zeros(model.n_states)
+    x0[:nv], x0[nv : 2 * nv] = delta, velocity
+    return x0
 
 
 def _output_rows(model: LinearModel, with_radiation: bool) -> np.ndarray:

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..compiled import TERM_ROWS
 from ..compiled.kernels import hydro_velocity, poses
 from ..control import ControlledScene
 from ..control.design import PowerBound, power_bound
@@ -173,6 +174,34 @@ LOAD_PICKS: dict[str, LoadPick] = {
 """The load quantities (``loads`` group) by name."""
 
 
+def _terms(qs: Quantities) -> np.ndarray:
+    """The hydrodynamic terms' forces and moments (n_t, n_body, len(TERM_ROWS), 6), world axes."""
+    values = qs.record["terms"]
+    return values.reshape(values.shape[0], -1, len(TERM_ROWS), 6)
+
+
+def _term(rows: tuple[str, ...], moment: bool) -> Callable[[Quantities], np.ndarray]:
+    """The sum of the terms ``rows`` (their force, or their moment about the centre of mass) per body."""
+    index = [TERM_ROWS.index(row) for row in rows]
+    part = slice(3, 6) if moment else slice(0, 3)
+
+    def quantity(qs: Quantities) -> np.ndarray:
+        terms = qs.get("terms")
+        return terms[:, :, index[0], part] if len(index) == 1 else terms[:, :, index, part].sum(axis=2)
+
+    return quantity
+
+
+_TERM_QUANTITIES = {
+    "hydrostatic": ("hydrostatic",),
+    "froude_krylov": ("froude_krylov",),
+    "viscous": ("drag",),
+    "morison_inertia": ("morison_inertia",),
+    "nonlinear_hydro": ("remainder", "drag", "morison_inertia"),
+}
+"""The hydrodynamics group's quantities and the terms they sum."""
+
+
 def _window_count(qs: Quantities) -> float:
     stats = qs.record.stats
     return max(1.0, float(stats[2, 0])) if stats.size else 1.0
@@ -253,6 +282,12 @@ QUANTITIES: dict[str, Callable[[Quantities], Any]] = {
     "stroke_limit_episodes": _limit(3, False),
     "bound": _bound,
     "power_bound": _power_bound,
+    "terms": _terms,
+    **{
+        f"{name}_{part}": _term(rows, part == "moment")
+        for name, rows in _TERM_QUANTITIES.items()
+        for part in ("force", "moment")
+    },
 }
 """Every quantity by name: a function of the :class:`Quantities` of a record."""
 

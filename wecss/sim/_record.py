@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import CompiledScene
+from ..compiled import TERM_ROWS, CompiledScene
 from ..outputs import CHANNEL_NAMES
 
 
@@ -62,6 +62,11 @@ class Record:
     def __getitem__(self, channel: str) -> np.ndarray:
         """The recorded array of ``channel`` (``record["q"]``)."""
         return self.series[channel]
+
+
+def no_terms(compiled: CompiledScene, n_rows: int) -> np.ndarray:
+    """The ``terms`` channel of a run that computes no hydrodynamic terms: zeros (n_rows, n_terms)."""
+    return np.zeros((n_rows, len(TERM_ROWS) * 6 * len(compiled.device.model.bodies)))
 
 
 def stats_start(compiled: CompiledScene) -> int:

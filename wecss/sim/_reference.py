@@ -22,7 +22,14 @@ class ReferenceSolver(Runner):
 
     name = "reference"
     description = "scipy DOP853 at tight tolerance on (q, v, radiation states), for verification"
-    capabilities = Capabilities(radiation=("state_space", "none"), sampled_controllers=False, order=8)
+    capabilities = Capabilities(
+        radiation=("state_space", "none"),
+        sampled_controllers=False,
+        initial_state=True,
+        hydrodynamics=("body-exact", "drag"),
+        terms=True,
+        order=8,
+    )
     radiation_reason = (
         "with a convolution the memory at the intermediate stages is not defined, which would drop the scheme to first "
         "order; use 'beeman' for convolutions"
@@ -45,7 +52,7 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
         q, v = y[:nq], y[nq : nq + nv]
         z = y[nq + nv : nq + nv + nz] + 1j * y[nq + nv + nz :]
         exc = compiled.excitation_at(np.array([t]))[0]
-        return (*state_rates(p, r, q, v, z, exc, command, work), exc)
+        return (*state_rates(p, r, q, v, z, exc, t, command, work), exc, work.terms.out.reshape(-1).copy())
 
     def rates(t: float, y: np.ndarray) -> np.ndarray:
         qd, a, zd, *_ = parts(t, y)
@@ -53,7 +60,8 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
 
     every = scene.outputs.every if not scene.outputs.statistics_only else compiled.n_steps + 1
     time = compiled.time  # every step, to the end, for the statistics; the saved ones are every ``every``-th
-    y0 = np.concatenate([compiled.q0, np.zeros(nv + 2 * nz)])
+    q0, v0 = compiled.initial_state()
+    y0 = np.concatenate([q0, v0, np.zeros(2 * nz)])
     start = _time.perf_counter()
     from scipy.integrate import solve_ivp  # lazy: only the reference solver needs it
 
@@ -66,7 +74,7 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
     rows = [parts(t, y) for t, y in zip(sol.t, sol.y.T, strict=True)]
     stack = {
         k: np.array([row[i] for row in rows])
-        for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7))
+        for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7), ("terms", 8))
     }
     stack["q"], stack["v"] = sol.y[:nq].T.copy(), sol.y[nq : nq + nv].T.copy()
     stats = window_statistics(compiled, stack["x"], stack["xd"], stack["f"])

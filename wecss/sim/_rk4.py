@@ -40,14 +40,15 @@ def state_rates(
     v: np.ndarray,
     z: np.ndarray,
     exc: np.ndarray,
+    t: float,
     command: np.ndarray,
     w: Workspace,
 ):
-    """Rates (q_dot, v_dot, z_dot) of the state-space system, with the PTO data (x, x_dot, f) and the memory force
-    (``w``: the kernels' workspace)."""
+    """Rates (q_dot, v_dot, z_dot) of the state-space system at time ``t`` [s], with the PTO data (x, x_dot, f) and
+    the memory force (``w``: the kernels' workspace)."""
     rad = np.empty(exc.shape[0])
     matvec(r.output_real, z.view(np.float64), rad)
-    if configure(p, q, exc + rad, w):
+    if configure(p, q, exc + rad, t, w):
         respond(p, v, np.zeros((exc.shape[0], exc.shape[0])), command, w)  # the memory is all in z
     else:
         w.acc[:] = np.nan
@@ -76,20 +77,21 @@ def rk4_chunk(
     h, bounded, bound = settings.h, settings.bounded, settings.angle_bound
     q, v, acc, z, pto_now = state.q, state.v, state.acc, state.z, state.pto_now
     n_steps = (excitation.shape[0] - 1) // 2
-    qd1, a1, zd1, _, _, _, _ = state_rates(p, r, q, v, z, excitation[0], command, w)
+    qd1, a1, zd1, _, _, _, _ = state_rates(p, r, q, v, z, excitation[0], step0 * h, command, w)
     out.evaluations[0] += 1
     out.evaluations[1] = max(out.evaluations[1], 5)
     for k in range(n_steps):
         n1 = step0 + k + 1
         em = excitation[2 * k + 1]
         e1 = excitation[2 * k + 2]
+        tm, t1 = (n1 - 0.5) * h, n1 * h
         qd2, a2, zd2, _, _, _, _ = state_rates(
-            p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, command, w
+            p, r, q + 0.5 * h * qd1, v + 0.5 * h * a1, z + 0.5 * h * zd1, em, tm, command, w
         )
         qd3, a3, zd3, _, _, _, _ = state_rates(
-            p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, command, w
+            p, r, q + 0.5 * h * qd2, v + 0.5 * h * a2, z + 0.5 * h * zd2, em, tm, command, w
         )
-        qd4, a4, zd4, _, _, _, _ = state_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, command, w)
+        qd4, a4, zd4, _, _, _, _ = state_rates(p, r, q + h * qd3, v + h * a3, z + h * zd3, e1, t1, command, w)
         q1 = q + h / 6.0 * (qd1 + 2.0 * qd2 + 2.0 * qd3 + qd4)
         normalise_quaternions(p, q1)
         v1 = v + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
@@ -100,7 +102,7 @@ def rk4_chunk(
         q[:] = q1
         v[:] = v1
         z[:] = z + h / 6.0 * (zd1 + 2.0 * zd2 + 2.0 * zd3 + zd4)
-        qd1, a1, zd1, x1, xd1, f1, rad = state_rates(p, r, q, v, z, e1, command, w)
+        qd1, a1, zd1, x1, xd1, f1, rad = state_rates(p, r, q, v, z, e1, t1, command, w)
         out.evaluations[0] += 4
         acc[:] = a1
         pto_now[0] = x1
@@ -108,7 +110,7 @@ def rk4_chunk(
         pto_now[2] = f1
         if passes_stroke_limit(p, x1):
             return LoopStatus.STROKE_LIMIT, n1
-        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, e1))
+        record_step(out, n1, p, (q, v, acc, x1, xd1, f1, rad, e1, w.terms.out.reshape(-1)))
     return LoopStatus.OK, step0 + n_steps
 
 
@@ -118,7 +120,14 @@ class Rk4(FixedStepRunner):
 
     name = "rk4"
     description = "classic fourth-order Runge-Kutta on (q, v, radiation states)"
-    capabilities = Capabilities(radiation=("state_space", "none"), streaming=True, order=4)
+    capabilities = Capabilities(
+        radiation=("state_space", "none"),
+        streaming=True,
+        initial_state=True,
+        hydrodynamics=("body-exact", "drag"),
+        terms=True,
+        order=4,
+    )
     stages = 2
     radiation_reason = (
         "with a convolution the memory at the intermediate stages is not defined, which would drop the scheme to first "
