@@ -16,11 +16,27 @@ from ._model import LinearModel, linearize
 def response_amplitudes(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
     """Complex amplitudes xi_hat (nv, n_w) of the generalised displacements from the equilibrium, Re[xi_hat
     e^{i omega t}], for excitation amplitudes ``coefficients`` (n_h, n_w) [N, N m, J] at ``omega`` (n_w,) [rad/s]
-    on the hydro DOFs: the exact frequency response of ``model`` [m, rad, 1]."""
+    on the hydro DOFs: the exact frequency response of ``model`` [m, rad, 1]; with the model's linearised drag
+    (``model.drag``) its forcing by the fluid's velocity too (the components must be those it was linearised on).
+
+    Raises
+    ------
+    ValueError
+        If the model carries a linearised drag of other wave components.
+    """
     omega = np.asarray(omega, dtype=float)
     if omega.size == 0:
         return np.zeros((model.mass.shape[0], 0), dtype=complex)
-    return np.einsum("wvj,jw->vw", model.frequency_response(omega), coefficients)
+    out = np.einsum("wvj,jw->vw", model.frequency_response(omega), coefficients)
+    if model.drag is not None and model.drag.forcing.size:
+        if not np.array_equal(omega, model.drag.omega):
+            raise ValueError(
+                "the linear model's drag was linearised in its scene's sea state: evaluate it on that scene's wave "
+                "components (or linearise a scene with these waves)"
+            )
+        z = model.dynamic_stiffness(omega)
+        out = out + np.linalg.solve(z, model.drag.forcing.T[:, :, None])[:, :, 0].T
+    return out
 
 
 def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.Dataset:

@@ -41,6 +41,7 @@ from ..compiled import CompiledScene, RadiationKind, interpolate_matrices, linea
 from ..compiled.kernels import kinematics, pto_strokes, world_jacobian
 from ..multibody import body_mass_matrix
 from ..radiation import RadiationStateSpace
+from ._drag import LinearisedDrag, linearise_drag
 from ._modal_recursion import ModalForm, ModalSteps
 
 if (
@@ -112,6 +113,10 @@ class LinearModel:
         power bound of every run, do not need it): None without ``radiation`` or before that first use.
     build_system : callable or None
         Makes ``system`` (used by :attr:`state_space`).
+    drag : LinearisedDrag or None
+        The scene's body drag linearised in its sea state (``hydrodynamics.drag``): its equivalent damping is in
+        ``damping``; its forcing by the fluid's velocity, per wave component, is ``drag.forcing`` (the runs add
+        it to the excitation's generalised force). None without drag.
     """
 
     mass: np.ndarray
@@ -128,6 +133,7 @@ class LinearModel:
     radiation: RadiationStateSpace | None
     system: control.StateSpace | None
     build_system: Callable[[], control.StateSpace] | None = field(default=None, repr=False)
+    drag: LinearisedDrag | None = None
 
     @property
     def state_space(self) -> control.StateSpace:
@@ -514,6 +520,15 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
         compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values
     )
     rad = radiation.real_modal() if radiation is not None else _radiation_model(compiled)
+    drag = None
+    if compiled.scene.hydrodynamics.drag:  # the body drag linearised in the sea state (wecss.linear._drag)
+        bare = LinearModel(
+            mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
+            p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, None,
+        )  # fmt: skip
+        drag = linearise_drag(compiled, bare.dynamic_stiffness, bw)
+        if drag is not None:
+            damping = damping + drag.damping
     build = None
     if rad is not None:
         if tuple(rad.dofs) != tuple(compiled.hydro.dofs):
@@ -527,7 +542,7 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
         build = partial(_state_space, labels, rad, mass, damping, stiffness, bw, g)
     return LinearModel(
         mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
-        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, build,
+        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, build, drag,
     )  # fmt: skip
 
 

@@ -11,7 +11,7 @@ import numpy as np
 from ..compiled import pto_control_force
 from ..control import ControlledScene
 from ..linear import linearize, response_amplitudes
-from ..scene import Capabilities, Runner
+from ..scene import Capabilities, Runner, SceneError
 from ..waves import evaluate
 from ._load_amplitudes import Spectral
 from ._record import Record, no_terms, window_statistics
@@ -23,8 +23,21 @@ class FrequencyDomain(Runner):
     name = "frequency"
     description = "the exact frequency-domain steady state of the linearised equations, from A(omega) and B(omega)"
     capabilities = Capabilities(
-        memory_model=False, sampled_controllers=False, free_base=False, transient=False, order=0
+        memory_model=False,
+        sampled_controllers=False,
+        free_base=False,
+        transient=False,
+        hydrodynamics=("drag",),
+        order=0,
     )
+
+    def check_compiled(self, compiled: Any) -> None:
+        super().check_compiled(compiled)
+        if compiled.scene.hydrodynamics.drag and compiled.plant.viscous.morison_body.size:
+            raise SceneError(
+                f"solver.method {self.name!r} linearises the body drag but not the Morison elements of "
+                f"{compiled.device.name!r} (their drag and fluid inertia): use a nonlinear runner such as 'beeman'"
+            )
 
     def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
         return run_frequency_domain(controlled)

@@ -15,7 +15,8 @@ from ..compiled import initial_increments, pto_control_force, saturate
 from ..compiled.kernels import end_stop_force
 from ..control import ControlledScene, compile_scene
 from ..linear import Feedback, LinearModel, closed_loop, linearize, open_loop
-from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene
+from ..scene import LINEAR_HOLDS, Capabilities, Runner, Scene, SceneError
+from ..waves import evaluate
 from ._control import ControlLoop
 from ._dataset import build_result
 from ._errors import PtoLimitExceeded
@@ -28,9 +29,22 @@ class LinearRunner(Runner):
     name = "linear"
     description = "the equations linearised about the equilibrium, stepped exactly in modal coordinates"
     capabilities = Capabilities(
-        radiation=("state_space",), free_base=False, options=("hold",), initial_state=True, order=2
+        radiation=("state_space",),
+        free_base=False,
+        options=("hold",),
+        initial_state=True,
+        hydrodynamics=("drag",),
+        order=2,
     )
     radiation_reason = "the linear model carries the radiation memory as states"
+
+    def check_compiled(self, compiled: Any) -> None:
+        super().check_compiled(compiled)
+        if compiled.scene.hydrodynamics.drag and compiled.plant.viscous.morison_body.size:
+            raise SceneError(
+                f"solver.method {self.name!r} linearises the body drag but not the Morison elements of "
+                f"{compiled.device.name!r} (their drag and fluid inertia): use a nonlinear runner such as 'beeman'"
+            )
 
     def run(self, controlled: ControlledScene, *, progress: bool = False, stream: Any = None) -> Record:
         return linear_record(controlled, hold=controlled.scene.solver.linear_hold)
@@ -89,6 +103,10 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     time = compiled.time
     exc = compiled.excitation_at(time)
     force = exc @ model.hydro_jacobian  # generalised excitation (n_t, nv)
+    if model.drag is not None and model.drag.forcing.size:  # the linearised drag's forcing by the fluid's velocity
+        ramp = compiled.excitation.ramp if compiled.excitation is not None else None
+        drag = np.real(evaluate(model.drag.forcing, model.drag.omega, time)).T
+        force += drag if ramp is None else drag * ramp(time)[:, None]
     stroke0 = model.pto_stroke
     with_radiation = bool({"radiation", "loads"} & set(compiled.scene.outputs.variables))  # loads need the memory
     limited = bool(np.any(np.isfinite(p.pto_force_limit)) or np.any(np.isfinite(p.pto_stroke_limit)))
