@@ -178,11 +178,10 @@ def respond_viscous(
     tw: TermsWork, gen: np.ndarray,
 ) -> None:  # fmt: skip
     """The drag forces at the velocities of the bodies' centres of mass ``lin`` (world) and their angular velocities
-    ``omega`` (body axes), added to the generalised force ``gen`` through B (``b``) and to ``tw.out``."""
+    ``omega`` (body axes), added to the generalised force ``gen`` through B (``b``) and to ``tw.out``.
+    """
     n_d = vis.drag_body.shape[0]
     n_s = vis.morison_body.shape[0]
-    if n_d + n_s == 0:
-        return
     for i in range(tw.out.shape[0]):
         for a in range(6):
             tw.out[i, DRAG_ROW, a] = 0.0
