@@ -40,7 +40,8 @@ from ._radiation import (
     from_state_space,
     no_radiation,
 )
-from ._terms import viscous_arrays, wave_arrays
+from ._terms import pressure_arrays, viscous_arrays, wave_arrays
+from ._body_exact import PressureArrays
 from ._viscous import ViscousArrays
 from ._wave_kinematics import no_waves
 
@@ -480,6 +481,7 @@ def compile_plant(scene: Scene) -> CompiledScene:
                 f"frequencies: largest change {change:.2%} of a diagonal A_inf"
             )
     viscous, extra_mass = _viscous_terms(scene, device, q0, waves, hydro, notes)
+    pressure = _pressure_terms(scene, device, coupling, q0, waves, notes)
     plant = build_plant(
         device.model,
         coupling,
@@ -487,6 +489,7 @@ def compile_plant(scene: Scene) -> CompiledScene:
         hydro.g,
         added_mass_correction=correction,
         viscous=viscous,
+        pressure=pressure,
         extra_mass=extra_mass,
     )
     if summary.dropped_entries:
@@ -542,6 +545,35 @@ def _viscous_terms(
         f"{velocity}; Morison added mass taken at the equilibrium immersion"
     )
     return viscous, extra_mass
+
+
+def _pressure_terms(
+    scene: Scene,
+    device: Device,
+    coupling: HydroCoupling,
+    q0: np.ndarray,
+    waves: wv.WaveComponents | None,
+    notes: list[str],
+) -> PressureArrays:
+    """The scene's body-exact pressure forces (``hydrodynamics.hydrostatics`` / ``froude_krylov``), with notes."""
+    hydrodynamics = scene.hydrodynamics
+    if not hydrodynamics.body_exact:
+        return pressure_arrays(device, coupling, q0, hydrodynamics, None, None, notes)
+    ramp = wv.Ramp(scene.sea.ramp_s) if scene.sea.ramp_s > 0 else None
+    try:
+        pressure = pressure_arrays(device, coupling, q0, hydrodynamics, waves, ramp, notes)
+    except (ValueError, KeyError) as err:
+        raise SceneError(f"hydrodynamics: {err}") from None
+    forces = " and ".join(
+        name for name, on in (("hydrostatics", hydrodynamics.hydrostatics == "body-exact"),
+                              ("Froude-Krylov force", hydrodynamics.froude_krylov == "body-exact")) if on
+    )  # fmt: skip
+    surface = "the incident wave's surface" if pressure.settings[0] == 1 else "the still water level"
+    notes.append(
+        f"body-exact {forces} on {pressure.owner.size} meshes ({pressure.mesh.faces.shape[0]} triangles), clipped at "
+        f"{surface}, {hydrodynamics.form} formulation"
+    )
+    return pressure
 
 
 def with_linear_gains(compiled: CompiledScene, damping: Any, stiffness: Any) -> CompiledScene:

@@ -25,37 +25,11 @@ from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
 from ._pto_law import pto_control_force_kernel
+from ._rotation import so3_log_into
+from ._body_exact import configure_pressure
 from ._viscous import TermsWork, configure_viscous, respond_viscous, terms_work
 
 _SMALL = 1e-8
-
-
-@inline_kernel
-def so3_log_into(r: np.ndarray, out: np.ndarray) -> None:
-    """The rotation vector of the rotation matrix ``r`` (3, 3) into ``out`` (3,) [rad]."""
-    cos = min(1.0, max(-1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))
-    theta = np.arccos(cos)
-    v0, v1, v2 = 0.5 * (r[2, 1] - r[1, 2]), 0.5 * (r[0, 2] - r[2, 0]), 0.5 * (r[1, 0] - r[0, 1])
-    if theta < _SMALL:
-        out[0], out[1], out[2] = v0, v1, v2
-    elif np.pi - theta < 1e-6:
-        k = 0  # the column of (R + I)/2 = n n' with the largest diagonal entry (the first of equals)
-        if r[1, 1] > r[k, k]:
-            k = 1
-        if r[2, 2] > r[k, k]:
-            k = 2
-        a0, a1, a2 = r[0, k], r[1, k], r[2, k]
-        if k == 0:
-            a0 += 1.0
-        elif k == 1:
-            a1 += 1.0
-        else:
-            a2 += 1.0
-        scale = theta / np.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
-        out[0], out[1], out[2] = scale * a0, scale * a1, scale * a2
-    else:
-        scale = theta / np.sin(theta)
-        out[0], out[1], out[2] = scale * v0, scale * v1, scale * v2
 
 
 @kernel
@@ -630,6 +604,7 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Wor
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
     configure_viscous(p.viscous, t, w.rot, w.pos, p.cart_start, w.terms, force)
+    configure_pressure(p.pressure, t, w.rot, w.pos, p.com0, p.cart_start, w.terms, force)
     for i in range(p.com0.shape[0]):
         r3 = p.cart_start[i] + 3
         _rotate(w.rot[i].T, force[r3 : r3 + 3], w.vec)

@@ -22,6 +22,7 @@ from ..multibody import (
     integrate,
     kinematics,
 )
+from ._body_exact import PressureArrays, no_pressure
 from ._viscous import ViscousArrays, no_viscous
 
 
@@ -82,7 +83,9 @@ class Plant(NamedTuple):
         ``hydrostatic_stiffness``
     Hydrodynamic terms beyond the linear database
         viscous : ``wecss.compiled._viscous.ViscousArrays`` (body drag, linear damping, Morison elements, and the
-        incident wave they see; empty arrays when the scene asks for none)
+        incident wave they see; empty arrays when the scene asks for none); pressure:
+        ``wecss.compiled._body_exact.PressureArrays`` (the body-exact hydrostatic and Froude-Krylov forces on the
+        bodies' meshes; none when the scene asks for none)
     """
 
     order: np.ndarray
@@ -130,6 +133,7 @@ class Plant(NamedTuple):
     joint_damping: np.ndarray
     mooring_damping: np.ndarray
     viscous: ViscousArrays
+    pressure: PressureArrays
 
 
 def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
@@ -258,6 +262,7 @@ def build_plant(
     stiffness: np.ndarray | None = None,
     added_mass_correction: np.ndarray | None = None,
     viscous: ViscousArrays | None = None,
+    pressure: PressureArrays | None = None,
     extra_mass: np.ndarray | None = None,
 ) -> Plant:
     """Flat arrays of ``model`` with its hydrostatics (None: none), gravity ``g`` [m/s^2] and PTOs.
@@ -266,7 +271,8 @@ def build_plant(
     equations of motion (default zero: the controller's force is held over each step instead).
     ``added_mass_correction`` (n_h, n_h) is added to A_inf (see ``_radiation.added_mass_correction``).
     ``viscous``: the scene's viscous terms (default none), ``extra_mass`` (n_cart, n_cart) a further added mass
-    (the Morison elements', ``wecss.compiled._terms.viscous_arrays``).
+    (the Morison elements', ``wecss.compiled._terms.viscous_arrays``); ``pressure`` the body-exact pressure forces
+    (default none, ``wecss.compiled._terms.pressure_arrays``).
     """
     n = len(model.bodies)
     inertia = np.array([b.inertia for b in model.bodies])
@@ -306,6 +312,7 @@ def build_plant(
         joint_damping=model.joint_damping,
         mooring_damping=np.ascontiguousarray(mooring_h),
         viscous=no_viscous() if viscous is None else viscous,
+        pressure=no_pressure() if pressure is None else pressure,
     )
 
 

@@ -60,14 +60,17 @@ class TermsWork(NamedTuple):
     """Scratch and outputs of the hydrodynamic terms in a workspace: ``phasor`` (n_w,) complex the waves' phasors at
     the evaluation's time, ``fluid`` (n_d + n_s, 6) the fluid's velocity and acceleration at the drag points and the
     Morison segments (world), ``wet`` (n_d + n_s,) 1.0 where the point is below the surface, ``out`` (n_body,
-    len(TERM_ROWS), 6) the terms' forces and moments per body (world axes, about the centre of mass), ``vec6`` (6,),
+    len(TERM_ROWS), 6) the terms' forces and moments per body (world axes, about the centre of mass), ``flags``
+    (n_body,) the body-exact forces' flags, ORed over a run (``wecss.compiled._pressure``), ``vec6``, ``delta`` (6,),
     ``offset`` (3,) and ``axis`` (3,) scratch."""
 
     phasor: np.ndarray
     fluid: np.ndarray
     wet: np.ndarray
     out: np.ndarray
+    flags: np.ndarray
     vec6: np.ndarray
+    delta: np.ndarray
     offset: np.ndarray
     axis: np.ndarray
 
@@ -81,6 +84,8 @@ def terms_work(viscous: ViscousArrays, n_body: int) -> TermsWork:
         np.zeros((n_points, 6)),
         np.zeros(n_points),
         np.zeros((n_body, len(TERM_ROWS), 6)),
+        np.zeros(n_body, dtype=np.int64),
+        np.zeros(6),
         np.zeros(6),
         np.zeros(3),
         np.zeros(3),

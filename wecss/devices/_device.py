@@ -6,7 +6,7 @@ import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.linalg import eig
@@ -26,7 +26,11 @@ from ..multibody import (
     StaticModel,
 )
 from ._members import Member, read_members
+from ._meshes import BodyMesh, read_meshes
 from ._spec import DeviceSpecError, build_model, build_moorings, build_viscous, hydro_source, read_spec
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..hydro.mesh import SurfaceMesh
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,6 +58,9 @@ class Device:
         Viscous drag and linear damping on bodies' DOFs (act when a scene asks for ``hydrodynamics.drag``).
     morison : tuple of MorisonElement
         Morison cylinders (the same).
+    meshes : tuple of BodyMesh
+        Bodies' surface meshes (``[[meshes]]``) for the body-exact hydrostatic and Froude-Krylov forces
+        (``wecss.devices._meshes``); :meth:`surface_mesh` builds one.
     hydro_options : mapping
         Keyword arguments of the reader of the ``hydro`` file (the spec's ``[hydro_options]``).
     """
@@ -70,6 +77,7 @@ class Device:
     hydro_options: Mapping[str, Any] = field(default_factory=dict)
     drag: tuple[BodyDrag, ...] = ()
     morison: tuple[MorisonElement, ...] = ()
+    meshes: tuple[BodyMesh, ...] = ()
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -92,12 +100,16 @@ class Device:
             raise DeviceSpecError(str(err)) from None
         moorings = build_moorings(spec, model)
         drag, morison = build_viscous(spec, model)
+        try:
+            meshes = read_meshes(spec, folder, model)
+        except ValueError as err:
+            raise DeviceSpecError(str(err)) from None
         options = spec.get("hydro_options", {})
         if not isinstance(options, Mapping):
             raise DeviceSpecError(f"device {spec['name']!r}: hydro_options must be a table; got {options!r}")
         return cls(
             spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings,
-            dict(options), drag, morison,
+            dict(options), drag, morison, meshes,
         )  # fmt: skip
 
     def member(self, name: str) -> Member:
@@ -112,6 +124,22 @@ class Device:
             if m.name == name:
                 return m
         raise KeyError(f"device {self.name!r} has no member {name!r}; members: {[m.name for m in self.members]}")
+
+    def surface_mesh(self, body: str) -> SurfaceMesh:
+        """The surface mesh of ``body`` in its body frame (from its centre of mass; see ``wecss.devices._meshes``).
+
+        Raises
+        ------
+        KeyError
+            If the spec declares no mesh for the body (the message lists those it declares).
+        """
+        for m in self.meshes:
+            if m.body == body:
+                return m.surface(self.model)
+        raise KeyError(
+            f"device {self.name!r} declares no mesh of body {body!r} ([[meshes]]); meshes: "
+            f"{[m.body for m in self.meshes] or 'none'}"
+        )
 
     # --- hydrodynamics ----------------------------------------------------------------------------
     def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:

@@ -51,7 +51,7 @@ from ..multibody import ActuatorPTO, Body, BodyDrag, Joint, JointPTO, Mooring, M
 
 _TOP_KEYS = {
     "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
-    "drag", "morison",
+    "drag", "morison", "meshes",
 }  # fmt: skip
 _BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body", "modes"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
@@ -106,8 +106,8 @@ def hydro_source(spec: Mapping[str, Any], folder: Path | None) -> str | None:
 
 
 def spec_files(path: str | Path) -> tuple[Path, ...]:
-    """The files a device built from the spec file ``path`` is read from: the spec and, when it names one, its
-    database file (for a cache that must see either change).
+    """The files a device built from the spec file ``path`` is read from: the spec and, when it names them, its
+    database file and its mesh files (for a cache that must see any change).
 
     Raises
     ------
@@ -121,6 +121,11 @@ def spec_files(path: str | Path) -> tuple[Path, ...]:
     files = [Path(path).resolve()]
     if hydro is not None and Path(hydro).is_file():
         files.append(Path(hydro))
+    for entry in spec.get("meshes", []) if isinstance(spec.get("meshes"), list) else []:
+        for key in ("stl", "geometry"):
+            value = entry.get(key) if isinstance(entry, Mapping) else None
+            if isinstance(value, str) and folder is not None and (folder / value).is_file():
+                files.append((folder / value).resolve())
     return tuple(files)
 
 

@@ -32,14 +32,15 @@ class Hydrodynamics:
         "linear" (default): the database's excitation. "body-exact": the incident-wave pressure (Airy,
         Wheeler-stretched, zero above the surface) integrated over the mesh below the free surface.
     free_surface : {"instantaneous", "mean"} or None
-        Where the meshes are clipped for the body-exact forces: at the incident wave's surface (default) or at the
-        still water level z = 0. Only with a body-exact force.
+        Where the meshes are clipped for the body-exact forces: at the incident wave's surface (the default with
+        the body-exact Froude-Krylov force, which it needs) or at the still water level z = 0 (the default without
+        it). Only with a body-exact force.
     formulation : {"remainder", "replace"} or None
         "remainder" (default): the body-exact forces minus their own value, tangent and linear Froude-Krylov force
         at the equilibrium are added to the linear forces, so that the equilibrium, the linear model and small
         waves are today's. "replace": the database's diffraction with the mesh's Froude-Krylov force and
         hydrostatics in place of the database's excitation and hydrostatic stiffness (the database must hold
-        ``diffraction``). Only with a body-exact force.
+        ``froude_krylov``). Only with a body-exact force.
     drag : bool
         The device's viscous forces (``[[bodies]]`` ``drag`` and ``linear_damping``, ``[[morison]]`` elements):
         quadratic drag, linear damping and Morison elements (default False).
@@ -77,6 +78,11 @@ class Hydrodynamics:
                         f"hydrodynamics.{name} = {value!r} applies to body-exact forces; set "
                         "hydrodynamics.hydrostatics or froude_krylov to 'body-exact' (or leave it out)"
                     )
+        if self.free_surface == "instantaneous" and self.froude_krylov != "body-exact":
+            raise SceneError(
+                "hydrodynamics.free_surface = 'instantaneous' clips the meshes at the incident wave, whose pressure "
+                "acts on them only with froude_krylov = 'body-exact'; set it, or free_surface = 'mean'"
+            )
         if self.drag_velocity is not None:
             check_choice("hydrodynamics.drag_velocity", self.drag_velocity, DRAG_VELOCITIES)
             if not self.drag:
@@ -97,8 +103,9 @@ class Hydrodynamics:
 
     @property
     def surface(self) -> str:
-        """Where the meshes are clipped ("instantaneous" unless ``free_surface`` says otherwise)."""
-        return self.free_surface or "instantaneous"
+        """Where the meshes are clipped: ``free_surface`` when given, else "instantaneous" with the body-exact
+        Froude-Krylov force and "mean" (z = 0) without it."""
+        return self.free_surface or ("instantaneous" if self.froude_krylov == "body-exact" else "mean")
 
     @property
     def form(self) -> str:
