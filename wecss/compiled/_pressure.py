@@ -1,0 +1,403 @@
+"""Pressure forces on a body's surface mesh below a free surface: hydrostatics and Froude-Krylov, per step.
+
+:func:`mesh_pressure_force` integrates the pressure -rho g z, plus the incident pressure when asked (Wheeler-
+stretched Airy waves, ``wecss.compiled._wave_field``), over the part of a body's mesh below the free surface, the
+incident surface eta(x, y, t) or the plane z = 0, and gives the force and the moment about the body's centre of
+mass, both in world axes.
+
+**Clipping.** Each face is cut by the signed heights d = z - eta of its corners, linearly along its edges (the cut
+points are where the linear interpolant of d vanishes): a corner with d < 0 is wet. A face with one wet corner
+keeps a triangle, one with two wet corners a quadrilateral (two triangles); faces are never kept or dropped whole.
+
+**Hydrostatic pressure, exactly.** Over a set of flat triangles, the integral of the linear pressure -rho g z is a
+linear combination of the triangles' surface moments in the body frame: with the area vector N, centroid c and
+second moments Q = int r r' dS / A of a triangle, a = sum N, S = sum c N' (int r n' dS), u = sum c x N
+(int r x n dS), T = sum Q x N (row j: int r_j (r x n) dS); and world height z = p_z + e . r (e: the third row of
+the rotation), force F = rho g R (p_z a + S' e) and moment M = rho g R (p_z u + T' e) about the centre of mass.
+Whole faces add their 24 precomputed moments; cut faces add those of their pieces. The result is exact to
+rounding for any pose, in either surface mode.
+
+**Froude-Krylov pressure, by quadrature.** The incident pressure is integrated over every wet triangle (whole face
+or piece) by the rule with weights 1/12 at each corner and 3/4 at the centroid, exact for polynomials of degree 2
+(error O(h^3) per unit area for panels of size h). The corners' pressures are computed once per vertex and shared
+by the faces around it; so each wet face costs one field evaluation at its centroid, each cut edge one at its cut
+point. A quadrature point the clipping counts as wet can lie above the incident surface: in surface mode 1 a
+little (between the piecewise-linear cut and the curved surface), in mode 0 anywhere between eta and z = 0 under a
+trough. There the incident pressure takes its value on the surface, rho g eta(x) (z' = 0), not zero: this keeps the
+total pressure continuous in mode 1, and in mode 0 it makes the force tend to the linear Froude-Krylov force for
+small waves (zero there would rectify the pressure at the waterline, an error of the first order in the
+amplitude).
+
+The kernel allocates nothing: world positions, heights, heads and the sums live in :class:`MeshArrays`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+
+from ._jit import inline_kernel
+from ._wave_field import CALM, FieldArrays, field_update, incident_elevation, incident_head, stretched_height
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..hydro.mesh import SurfaceMesh
+
+DRY: int = 1
+"""Flag bit of :func:`mesh_pressure_force`: no part of the body is below the surface (the force is zero)."""
+
+SUBMERGED: int = 2
+"""Flag bit: every face is wholly below the surface (none cut, none dry)."""
+
+OUTSIDE_TABLE: int = 4
+"""Flag bit: a point fell outside the incident field's table (evaluated by direct sums instead)."""
+
+MOMENTS: int = 24
+"""Surface moments per face: a (3), S (3 x 3), u (3), T (3 x 3); see the module docstring."""
+
+_FK = 24  # acc[24:27]: Froude-Krylov force, acc[27:30]: its moment (body frame, per rho g)
+
+
+class MeshArrays(NamedTuple):
+    """One or several bodies' meshes as arrays for :func:`mesh_pressure_force`.
+
+    Attributes
+    ----------
+    vertices : ndarray (n_v, 3)
+        Body-frame vertices [m], from the centre of mass, every body's after the previous one's.
+    faces : int64 ndarray (n_f, 3)
+        Vertex indices (into ``vertices``) of each face, outward by the right-hand rule.
+    moments : ndarray (n_f, 24)
+        Surface moments of each face in the body frame (see the module docstring).
+    vertex_start, face_start : int64 ndarray (n_b + 1,)
+        Body b owns vertices vertex_start[b]:vertex_start[b + 1] and faces face_start[b]:face_start[b + 1].
+    world : ndarray (n_v, 3)
+        Scratch: world positions of the vertices [m].
+    height : ndarray (n_v,)
+        Scratch: signed height d = z - eta of each vertex [m].
+    head : ndarray (n_v,)
+        Scratch: incident pressure head at wet vertices [m].
+    acc : ndarray (30,)
+        Scratch: the sums (24 surface moments, Froude-Krylov force and moment in the body frame).
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    moments: np.ndarray
+    vertex_start: np.ndarray
+    face_start: np.ndarray
+    world: np.ndarray
+    height: np.ndarray
+    head: np.ndarray
+    acc: np.ndarray
+
+
+def face_moments(triangles: np.ndarray) -> np.ndarray:
+    """The 24 surface moments (a, S, u, T; see the module docstring) of each triangle (n, 3, 3) [m], shape (n, 24)."""
+    t = np.asarray(triangles, dtype=float)
+    a, b, c = t[:, 0], t[:, 1], t[:, 2]
+    n = 0.5 * np.cross(b - a, c - a)
+    center = (a + b + c) / 3.0
+    second = (
+        np.einsum("ni,nj->nij", a, a) + np.einsum("ni,nj->nij", b, b) + np.einsum("ni,nj->nij", c, c)
+    ) / 12.0 + 0.75 * np.einsum("ni,nj->nij", center, center)
+    s = np.einsum("ni,nj->nij", center, n)
+    u = np.cross(center, n)
+    tt = np.cross(second, n[:, None, :])
+    return np.concatenate([n, s.reshape(-1, 9), u, tt.reshape(-1, 9)], axis=1)
+
+
+def mesh_arrays(meshes: SurfaceMesh | Sequence[SurfaceMesh]) -> MeshArrays:
+    """The arrays of one mesh, or of several bodies' meshes one after the other (body b is the b-th mesh).
+
+    Raises
+    ------
+    TypeError
+        If an item is not a ``SurfaceMesh``.
+    """
+    from ..hydro.mesh import SurfaceMesh
+
+    items = [meshes] if isinstance(meshes, SurfaceMesh) else list(meshes)
+    if not items or not all(isinstance(m, SurfaceMesh) for m in items):
+        raise TypeError("mesh_arrays takes a SurfaceMesh or a non-empty sequence of them")
+    vertex_start = np.cumsum([0] + [m.vertices.shape[0] for m in items]).astype(np.int64)
+    face_start = np.cumsum([0] + [m.n_faces for m in items]).astype(np.int64)
+    vertices = np.ascontiguousarray(np.concatenate([m.vertices for m in items]), dtype=float)
+    faces = np.concatenate([m.faces + vertex_start[b] for b, m in enumerate(items)]).astype(np.int64)
+    moments = np.ascontiguousarray(face_moments(vertices[faces]))
+    n_v = vertices.shape[0]
+    return MeshArrays(
+        vertices=vertices,
+        faces=np.ascontiguousarray(faces),
+        moments=moments,
+        vertex_start=vertex_start,
+        face_start=face_start,
+        world=np.zeros((n_v, 3)),
+        height=np.zeros(n_v),
+        head=np.zeros(n_v),
+        acc=np.zeros(30),
+    )
+
+
+@inline_kernel
+def _add_moments(acc: np.ndarray, ax, ay, az, bx, by, bz, cx, cy, cz) -> None:
+    """Add the 24 surface moments of the triangle (a, b, c) (body frame) to acc[0:24]."""
+    ux, uy, uz = bx - ax, by - ay, bz - az
+    vx, vy, vz = cx - ax, cy - ay, cz - az
+    nx = 0.5 * (uy * vz - uz * vy)
+    ny = 0.5 * (uz * vx - ux * vz)
+    nz = 0.5 * (ux * vy - uy * vx)
+    mx = (ax + bx + cx) / 3.0
+    my = (ay + by + cy) / 3.0
+    mz = (az + bz + cz) / 3.0
+    acc[0] += nx
+    acc[1] += ny
+    acc[2] += nz
+    acc[3] += mx * nx
+    acc[4] += mx * ny
+    acc[5] += mx * nz
+    acc[6] += my * nx
+    acc[7] += my * ny
+    acc[8] += my * nz
+    acc[9] += mz * nx
+    acc[10] += mz * ny
+    acc[11] += mz * nz
+    acc[12] += my * nz - mz * ny
+    acc[13] += mz * nx - mx * nz
+    acc[14] += mx * ny - my * nx
+    # Q = (a a' + b b' + c c') / 12 + 3/4 m m'; row j of T is Q[j] x N
+    qxx = (ax * ax + bx * bx + cx * cx) / 12.0 + 0.75 * mx * mx
+    qyy = (ay * ay + by * by + cy * cy) / 12.0 + 0.75 * my * my
+    qzz = (az * az + bz * bz + cz * cz) / 12.0 + 0.75 * mz * mz
+    qxy = (ax * ay + bx * by + cx * cy) / 12.0 + 0.75 * mx * my
+    qxz = (ax * az + bx * bz + cx * cz) / 12.0 + 0.75 * mx * mz
+    qyz = (ay * az + by * bz + cy * cz) / 12.0 + 0.75 * my * mz
+    acc[15] += qxy * nz - qxz * ny
+    acc[16] += qxz * nx - qxx * nz
+    acc[17] += qxx * ny - qxy * nx
+    acc[18] += qyy * nz - qyz * ny
+    acc[19] += qyz * nx - qxy * nz
+    acc[20] += qxy * ny - qyy * nx
+    acc[21] += qyz * nz - qzz * ny
+    acc[22] += qzz * nx - qxz * nz
+    acc[23] += qxz * ny - qyz * nx
+
+
+@inline_kernel
+def _point_head(field: FieldArrays, wx: float, wy: float, wz: float) -> tuple[float, int]:
+    """The incident pressure head [m] at a world point of the wet part, Wheeler-stretched, taken at z' = 0 above
+    eta (see the module docstring); and flags."""
+    xp = wx * field.cos_direction + wy * field.sin_direction
+    eta, f1 = incident_elevation(field, xp)
+    head, f2 = incident_head(field, xp, min(stretched_height(field, wz, eta), 0.0))
+    return head, f1 | f2
+
+
+@inline_kernel
+def _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc) -> int:
+    """Add the Froude-Krylov force and moment (body frame, per rho g) of the wet triangle with body-frame corners
+    a, b, c, corner heads ha, hb, hc [m] and world centroid (wx, wy, wz): minus the pressure head integrated with
+    the weights 1/12 at the corners and 3/4 at the centroid. Returns the flags of the centroid's evaluation."""
+    hm, flags = _point_head(field, wx, wy, wz)
+    ux, uy, uz = bx - ax, by - ay, bz - az
+    vx, vy, vz = cx - ax, cy - ay, cz - az
+    nx = 0.5 * (uy * vz - uz * vy)
+    ny = 0.5 * (uz * vx - ux * vz)
+    nz = 0.5 * (ux * vy - uy * vx)
+    mean = (ha + hb + hc) / 12.0 + 0.75 * hm
+    mx = (ax + bx + cx) / 3.0
+    my = (ay + by + cy) / 3.0
+    mz = (az + bz + cz) / 3.0
+    px = (ha * ax + hb * bx + hc * cx) / 12.0 + 0.75 * hm * mx  # int h r dS / A
+    py = (ha * ay + hb * by + hc * cy) / 12.0 + 0.75 * hm * my
+    pz = (ha * az + hb * bz + hc * cz) / 12.0 + 0.75 * hm * mz
+    acc[_FK] -= mean * nx
+    acc[_FK + 1] -= mean * ny
+    acc[_FK + 2] -= mean * nz
+    acc[_FK + 3] -= py * nz - pz * ny
+    acc[_FK + 4] -= pz * nx - px * nz
+    acc[_FK + 5] -= px * ny - py * nx
+    return flags
+
+
+@inline_kernel
+def _add_piece(mesh, field, rot, pos, include_fk, ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc) -> int:
+    """Add a wet piece (body-frame corners a, b, c with incident heads ha, hb, hc): its surface moments and, with
+    ``include_fk``, its Froude-Krylov force. Returns flags."""
+    _add_moments(mesh.acc, ax, ay, az, bx, by, bz, cx, cy, cz)
+    if not include_fk:
+        return 0
+    mx = (ax + bx + cx) / 3.0
+    my = (ay + by + cy) / 3.0
+    mz = (az + bz + cz) / 3.0
+    wx = pos[0] + rot[0, 0] * mx + rot[0, 1] * my + rot[0, 2] * mz
+    wy = pos[1] + rot[1, 0] * mx + rot[1, 1] * my + rot[1, 2] * mz
+    wz = pos[2] + rot[2, 0] * mx + rot[2, 1] * my + rot[2, 2] * mz
+    return _add_fk(mesh.acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
+
+
+@inline_kernel
+def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float, float, float, int]:
+    """The cut point at the fraction s from vertex i (wet) to vertex j (dry): body-frame coordinates, incident
+    head and flags."""
+    v = mesh.vertices
+    x = v[i, 0] + s * (v[j, 0] - v[i, 0])
+    y = v[i, 1] + s * (v[j, 1] - v[i, 1])
+    z = v[i, 2] + s * (v[j, 2] - v[i, 2])
+    if not include_fk:
+        return x, y, z, 0.0, 0
+    wx = pos[0] + rot[0, 0] * x + rot[0, 1] * y + rot[0, 2] * z
+    wy = pos[1] + rot[1, 0] * x + rot[1, 1] * y + rot[1, 2] * z
+    wz = pos[2] + rot[2, 0] * x + rot[2, 1] * y + rot[2, 2] * z
+    head, flags = _point_head(field, wx, wy, wz)
+    return x, y, z, head, flags
+
+
+@inline_kernel
+def mesh_pressure_force(
+    mesh: MeshArrays,
+    rot: np.ndarray,
+    pos: np.ndarray,
+    field: FieldArrays,
+    t: float,
+    surface_mode: int,
+    include_fk: bool,
+    rho: float,
+    g: float,
+    out: np.ndarray,
+    body=0,
+) -> int:
+    """Pressure force and moment on a body's mesh below the free surface (see the module docstring).
+
+    Parameters
+    ----------
+    mesh : MeshArrays
+    rot : ndarray (3, 3)
+        Rotation of the body (body axes to world axes).
+    pos : ndarray (3,)
+        World position of the body's centre of mass (the mesh's origin) [m].
+    field : FieldArrays
+        The incident wave field (``calm_field()`` for none).
+    t : float
+        Time [s].
+    surface_mode : int
+        0: the body is wet below z = 0; 1: below the incident surface eta(x, y, t).
+    include_fk : bool
+        Add the incident (Froude-Krylov) pressure to the hydrostatic -rho g z.
+    rho, g : float
+        Water density [kg/m^3] and gravity [m/s^2].
+    out : ndarray (6,)
+        Written: force [N] and moment about the centre of mass [N m], world axes.
+    body : int
+        Which body of ``mesh`` (default 0).
+
+    Returns
+    -------
+    int
+        Flags: DRY, SUBMERGED, OUTSIDE_TABLE (bits).
+    """
+    v0, v1 = mesh.vertex_start[body], mesh.vertex_start[body + 1]
+    f0, f1 = mesh.face_start[body], mesh.face_start[body + 1]
+    vertices, faces, world, height, head, acc = mesh.vertices, mesh.faces, mesh.world, mesh.height, mesh.head, mesh.acc
+    use_field = field.kind != CALM and (surface_mode == 1 or include_fk)
+    flags = 0
+    if use_field:
+        field_update(field, t)
+    for v in range(v0, v1):
+        x, y, z = vertices[v, 0], vertices[v, 1], vertices[v, 2]
+        wz = pos[2] + rot[2, 0] * x + rot[2, 1] * y + rot[2, 2] * z
+        if not use_field:
+            height[v] = wz
+            continue
+        wx = pos[0] + rot[0, 0] * x + rot[0, 1] * y + rot[0, 2] * z
+        wy = pos[1] + rot[1, 0] * x + rot[1, 1] * y + rot[1, 2] * z
+        world[v, 0] = wx
+        world[v, 1] = wy
+        world[v, 2] = wz
+        xp = wx * field.cos_direction + wy * field.sin_direction
+        eta, fe = incident_elevation(field, xp)
+        flags |= fe
+        d = wz - eta if surface_mode == 1 else wz
+        height[v] = d
+        if include_fk and d < 0.0:
+            hv, fh = incident_head(field, xp, min(stretched_height(field, wz, eta), 0.0))
+            head[v] = hv
+            flags |= fh
+        else:
+            head[v] = 0.0
+    for q in range(30):
+        acc[q] = 0.0
+    n_wet = 0
+    n_cut = 0
+    for f in range(f0, f1):
+        i0, i1, i2 = faces[f, 0], faces[f, 1], faces[f, 2]
+        d0, d1, d2 = height[i0], height[i1], height[i2]
+        w0, w1, w2 = d0 < 0.0, d1 < 0.0, d2 < 0.0
+        if not (w0 or w1 or w2):
+            continue
+        if w0 and w1 and w2:
+            n_wet += 1
+            for q in range(24):
+                acc[q] += mesh.moments[f, q]
+            if include_fk:
+                wx = (world[i0, 0] + world[i1, 0] + world[i2, 0]) / 3.0
+                wy = (world[i0, 1] + world[i1, 1] + world[i2, 1]) / 3.0
+                wz = (world[i0, 2] + world[i1, 2] + world[i2, 2]) / 3.0
+                flags |= _add_fk(
+                    acc, field,
+                    vertices[i0, 0], vertices[i0, 1], vertices[i0, 2],
+                    vertices[i1, 0], vertices[i1, 1], vertices[i1, 2],
+                    vertices[i2, 0], vertices[i2, 1], vertices[i2, 2],
+                    wx, wy, wz, head[i0], head[i1], head[i2],
+                )  # fmt: skip
+            continue
+        n_cut += 1
+        # corners in cyclic order starting at the odd one out: a wet corner (one wet) or the corner after the dry
+        # one (two wet)
+        single = (w0 + w1 + w2) == 1
+        if single:
+            ia, ib, ic = (i0, i1, i2) if w0 else ((i1, i2, i0) if w1 else (i2, i0, i1))
+        else:
+            ia, ib, ic = (i1, i2, i0) if not w0 else ((i2, i0, i1) if not w1 else (i0, i1, i2))
+        da, db, dc = height[ia], height[ib], height[ic]
+        ax, ay, az = vertices[ia, 0], vertices[ia, 1], vertices[ia, 2]
+        if single:  # the triangle (a, cut a-b, cut a-c)
+            px, py, pz, hp, fp = _cut_head(mesh, field, rot, pos, include_fk, da / (da - db), ia, ib)
+            qx, qy, qz, hq, fq = _cut_head(mesh, field, rot, pos, include_fk, da / (da - dc), ia, ic)
+            flags |= fp | fq
+            flags |= _add_piece(
+                mesh, field, rot, pos, include_fk,
+                ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
+            )  # fmt: skip
+        else:  # a, b wet, c dry: the triangles (a, b, cut b-c) and (a, cut b-c, cut a-c)
+            bx, by, bz = vertices[ib, 0], vertices[ib, 1], vertices[ib, 2]
+            px, py, pz, hp, fp = _cut_head(mesh, field, rot, pos, include_fk, db / (db - dc), ib, ic)
+            qx, qy, qz, hq, fq = _cut_head(mesh, field, rot, pos, include_fk, da / (da - dc), ia, ic)
+            flags |= fp | fq
+            flags |= _add_piece(
+                mesh, field, rot, pos, include_fk,
+                ax, ay, az, head[ia], bx, by, bz, head[ib], px, py, pz, hp,
+            )  # fmt: skip
+            flags |= _add_piece(
+                mesh, field, rot, pos, include_fk,
+                ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
+            )  # fmt: skip
+    if n_wet == 0 and n_cut == 0:
+        flags |= DRY
+    elif n_cut == 0 and n_wet == f1 - f0:
+        flags |= SUBMERGED
+    # hydrostatics: F = rho g R (p_z a + S' e), M = rho g R (p_z u + T' e), e = third row of R; plus Froude-Krylov
+    rho_g = rho * g
+    e0, e1, e2 = rot[2, 0], rot[2, 1], rot[2, 2]
+    pz = pos[2]
+    fx = pz * acc[0] + e0 * acc[3] + e1 * acc[6] + e2 * acc[9] + acc[_FK]
+    fy = pz * acc[1] + e0 * acc[4] + e1 * acc[7] + e2 * acc[10] + acc[_FK + 1]
+    fz = pz * acc[2] + e0 * acc[5] + e1 * acc[8] + e2 * acc[11] + acc[_FK + 2]
+    mx = pz * acc[12] + e0 * acc[15] + e1 * acc[18] + e2 * acc[21] + acc[_FK + 3]
+    my = pz * acc[13] + e0 * acc[16] + e1 * acc[19] + e2 * acc[22] + acc[_FK + 4]
+    mz = pz * acc[14] + e0 * acc[17] + e1 * acc[20] + e2 * acc[23] + acc[_FK + 5]
+    for a in range(3):
+        out[a] = rho_g * (rot[a, 0] * fx + rot[a, 1] * fy + rot[a, 2] * fz)
+        out[3 + a] = rho_g * (rot[a, 0] * mx + rot[a, 1] * my + rot[a, 2] * mz)
+    return flags
