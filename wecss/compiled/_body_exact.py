@@ -26,10 +26,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._jit import inline_kernel
+from ._jit import kernel
 from ._pressure import MeshArrays, mesh_pressure_force
 from ._rotation import so3_log_into
-from ._viscous import TERM_ROWS, TermsWork
+from ._viscous import TERM_ROWS, TermsWork, add_generalised
 from ._wave_field import FieldArrays, calm_field
 
 HYDROSTATIC_ROW, FROUDE_KRYLOV_ROW, REMAINDER_ROW = (
@@ -77,17 +77,15 @@ class PressureArrays(NamedTuple):
     water: np.ndarray
 
 
-@inline_kernel
+@kernel
 def configure_pressure(
     pa: PressureArrays, t: float, rot: np.ndarray, pos: np.ndarray, com0: np.ndarray, cart_start: np.ndarray,
-    tw: TermsWork, force: np.ndarray,
+    b_mat: np.ndarray, tw: TermsWork, gen: np.ndarray,
 ) -> None:  # fmt: skip
     """The body-exact term R (module docstring) at time ``t`` [s] and the bodies' frames ``rot``, ``pos`` (world;
-    ``com0`` the reference positions of the centres of mass) added to ``force`` (Cartesian rows, world axes), with
-    H, K and R into ``tw.out`` and the mesh kernel's flags into ``tw.flags``."""
+    ``com0`` the reference positions of the centres of mass), added to the generalised force ``gen`` through B
+    (``b_mat``), with H, K and R into ``tw.out`` and the mesh kernel's flags into ``tw.flags``."""
     n_mb = pa.owner.shape[0]
-    if n_mb == 0:
-        return
     mode = pa.settings[SURFACE_MODE]
     with_hs = pa.settings[WITH_HYDROSTATICS] == 1
     with_fk = pa.settings[WITH_FROUDE_KRYLOV] == 1
@@ -131,10 +129,13 @@ def configure_pressure(
                     c = pa.linear_fk[b, k, a]
                     s -= c.real * phasor[k].real - c.imag * phasor[k].imag
                 out[REMAINDER_ROW, a] += s
-        row = cart_start[i]
-        for a in range(6):
-            force[row + a] += out[REMAINDER_ROW, a]
-
+        # into the generalised force: the world force, the moment in body axes (B's rotation rows)
+        for a in range(3):
+            total[a] = out[REMAINDER_ROW, a]
+            total[3 + a] = (
+                r[0, a] * out[REMAINDER_ROW, 3] + r[1, a] * out[REMAINDER_ROW, 4] + r[2, a] * out[REMAINDER_ROW, 5]
+            )
+        add_generalised(b_mat, cart_start[i], total, gen)
 
 def no_pressure() -> PressureArrays:
     """No body-exact forces (empty arrays, calm field)."""

@@ -583,10 +583,24 @@ def end_stop_force(p: Plant, x: np.ndarray, xdot: np.ndarray) -> np.ndarray:
     return np.array([end_stop(p, k, float(x[k]), float(xdot[k])) for k in range(x.shape[0])])
 
 
-@step_kernel
+@inline_kernel
 def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace) -> bool:
     """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` and the time ``t`` [s]
-    alone, into ``w``: the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of
+    alone, into ``w``: :func:`configure_core`, then the body-exact pressure forces when the plant has them
+    (``wecss.compiled._body_exact``: a call of its own, which numba cannot inline; the mesh kernels are large and
+    an opaque call inside ``configure_core`` would keep numba from pruning its reference counts). Returns False
+    when M* is not positive definite (a degenerate configuration)."""
+    if not configure_core(p, q, hydro_force, t, w):
+        return False
+    if p.pressure.owner.shape[0] > 0:
+        configure_pressure(p.pressure, t, w.rot, w.pos, p.com0, p.cart_start, w.b, w.terms, w.gen_config)
+    return True
+
+
+@step_kernel
+def configure_core(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace) -> bool:
+    """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` and the time ``t`` [s]
+    alone but the body-exact pressure forces, into ``w``: the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of
     gravity, buoyancy, hydrostatics, the modes' structural stiffness, ``hydro_force`` (n_h,) [N, N m] (excitation
     plus the memory force fixed by the past, world axes) and the hydrodynamic terms of the scene that depend on the
     configuration and the waves at ``t`` (``wecss.compiled._viscous``), the PTO strokes and transmissions. Within a
@@ -604,7 +618,6 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Wor
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
     configure_viscous(p.viscous, t, w.rot, w.pos, p.cart_start, w.terms, force)
-    configure_pressure(p.pressure, t, w.rot, w.pos, p.com0, p.cart_start, w.terms, force)
     for i in range(p.com0.shape[0]):
         r3 = p.cart_start[i] + 3
         _rotate(w.rot[i].T, force[r3 : r3 + 3], w.vec)

@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from ._jit import inline_kernel
+from ._jit import inline_kernel, kernel
 from ._wave_field import CALM, FieldArrays, field_update, incident_elevation, incident_head, stretched_height
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -184,7 +184,7 @@ def _add_moments(acc: np.ndarray, ax, ay, az, bx, by, bz, cx, cy, cz) -> None:
     acc[23] += qxz * ny - qyz * nx
 
 
-@inline_kernel
+@kernel
 def _point_head(field: FieldArrays, wx: float, wy: float, wz: float) -> tuple[float, int]:
     """The incident pressure head [m] at a world point of the wet part, Wheeler-stretched, taken at z' = 0 above
     eta (see the module docstring); and flags."""
@@ -221,7 +221,7 @@ def _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, 
     return flags
 
 
-@inline_kernel
+@kernel
 def _add_piece(mesh, field, rot, pos, include_fk, ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc) -> int:
     """Add a wet piece (body-frame corners a, b, c with incident heads ha, hb, hc): its surface moments and, with
     ``include_fk``, its Froude-Krylov force. Returns flags."""
@@ -237,7 +237,7 @@ def _add_piece(mesh, field, rot, pos, include_fk, ax, ay, az, ha, bx, by, bz, hb
     return _add_fk(mesh.acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
 
 
-@inline_kernel
+@kernel
 def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float, float, float, int]:
     """The cut point at the fraction s from vertex i (wet) to vertex j (dry): body-frame coordinates, incident
     head and flags."""
@@ -254,7 +254,7 @@ def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float,
     return x, y, z, head, flags
 
 
-@inline_kernel
+@kernel
 def mesh_pressure_force(
     mesh: MeshArrays,
     rot: np.ndarray,

@@ -174,6 +174,9 @@ def pressure_arrays(
                 linear_fk[b] = linear_froude_krylov(
                     mesh, state.position[i], state.rotation[i], unit, hydro.water_depth, rho, g
                 )
+        names = [model.bodies[i].name for i in owners]
+        poses = [(state.position[i], state.rotation[i]) for i in owners]
+        notes.extend(_coarse_notes(meshes, names, poses, waves, hydro.water_depth, g))
         field = field_arrays(
             waves,
             depth=hydro.water_depth,
@@ -274,4 +277,38 @@ def _regions(meshes: list[SurfaceMesh], centres: list[np.ndarray], waves: WaveCo
         reach = radius + max(radius, 3.0 * hs)
         out[b, 0] = centre - reach
         out[b, 1] = centre + reach
+    return out
+
+
+PANELS_PER_WAVELENGTH: float = 10.0
+"""A mesh is noted as coarse for a sea state when its longest wetted edge exceeds the shortest significant
+wavelength over this number."""
+
+
+def _coarse_notes(
+    meshes: list[SurfaceMesh],
+    names: list[str],
+    poses: list[tuple[np.ndarray, np.ndarray]],
+    waves: WaveComponents,
+    depth: float,
+    g: float,
+) -> list[str]:
+    """Notes on meshes whose wetted panels at the equilibrium ``poses`` (position, rotation) are long against the
+    sea's shortest significant wavelength (at the frequency below which 95 % of the variance lies)."""
+    energy = np.abs(waves.amplitude) ** 2
+    order = np.argsort(waves.omega)
+    cumulative = np.cumsum(energy[order]) / np.sum(energy)
+    omega = float(waves.omega[order][min(int(np.searchsorted(cumulative, 0.95)), order.size - 1)])
+    wavelength = 2 * np.pi / float(wavenumber(np.array([omega]), depth, g)[0])
+    out = []
+    for name, mesh, pose in zip(names, meshes, poses, strict=True):
+        corners = mesh.posed(*pose)
+        wet = corners[:, :, 2].min(axis=1) < 0.0
+        edges = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2)[wet]
+        longest = float(edges.max()) if edges.size else 0.0
+        if longest > wavelength / PANELS_PER_WAVELENGTH:
+            out.append(
+                f"mesh of {name} coarse for the sea state: edges up to {longest:.3g} m against a shortest significant "
+                f"wavelength of {wavelength:.3g} m (more than 1/{PANELS_PER_WAVELENGTH:g} of it)"
+            )
     return out

@@ -211,7 +211,7 @@ def respond_viscous(
             tw.out[i, DRAG_ROW, a] += tw.offset[a]
             tw.out[i, DRAG_ROW, 3 + a] += r[a, 0] * cart[3] + r[a, 1] * cart[4] + r[a, 2] * cart[5]
             cart[a] = tw.offset[a]
-        _add_generalised(b, cart_start[i], cart, gen)
+        add_generalised(b, cart_start[i], cart, gen)
     for s in range(n_s):
         k = n_d + s
         if tw.wet[k] == 0.0 or vis.morison_drag[s] == 0.0:
@@ -242,11 +242,11 @@ def respond_viscous(
         tw.out[i, DRAG_ROW, 3] += m0
         tw.out[i, DRAG_ROW, 4] += m1
         tw.out[i, DRAG_ROW, 5] += m2
-        _add_generalised(b, cart_start[i], cart, gen)
+        add_generalised(b, cart_start[i], cart, gen)
 
 
 @inline_kernel
-def _add_generalised(b: np.ndarray, row: int, cart: np.ndarray, gen: np.ndarray) -> None:
+def add_generalised(b: np.ndarray, row: int, cart: np.ndarray, gen: np.ndarray) -> None:
     """gen += B[row : row + 6]' cart (a body's Cartesian force: world force, body-axes moment)."""
     for c in range(gen.shape[0]):
         s = 0.0

@@ -18,6 +18,7 @@ from ._kernels import Workspace as Workspace
 from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate
 from ._kernels import configure as configure
+from ._kernels import configure_core as configure_core
 from ._kernels import end_stop_force as end_stop_force
 from ._kernels import hydro_velocity as hydro_velocity
 from ._kernels import hydrostatic_force as hydrostatic_force

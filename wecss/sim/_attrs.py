@@ -14,7 +14,7 @@ from ..compiled import JIT
 from ..control import ControlledScene
 from ..control.design import PowerBound
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
-from ._guards import fit_notes, step_notes, wave_notes
+from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
 from ._record import Record
 
 
@@ -46,8 +46,9 @@ def sea_state_attrs(controlled: ControlledScene) -> dict[str, Any]:
     return out
 
 
-def _notes(controlled: ControlledScene, report: dict[str, Any], motion: list[str]) -> list[str]:
+def _notes(controlled: ControlledScene, report: dict[str, Any], motion: list[str], record: Record) -> list[str]:
     notes = [*controlled.notes, *fit_notes(controlled), *step_notes(controlled), *wave_notes(controlled), *motion]
+    notes += pressure_notes(controlled, record.pressure_flags)
     if controlled.device.ptos and not controlled.linear_controller:
         steps = controlled.scene.control_steps
         notes.append(
@@ -79,7 +80,7 @@ def result_attrs(
     scene = controlled.scene
     n_steps = controlled.n_steps
     report = controlled.controller.report() if controlled.device.ptos else {}
-    notes = _notes(controlled, report, motion) + later_notes
+    notes = _notes(controlled, report, motion, record) + later_notes
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {controlled.device.name}",
         "Conventions": "CF-1.10",

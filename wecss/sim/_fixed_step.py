@@ -284,4 +284,5 @@ def run_fixed_step(
         solver=runner.solver_attrs(out, prepared, n),
         limits=out.limits,
         hydro_order=hydro_order,
+        pressure_flags=work.terms.flags.copy(),
     )

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..compiled import CompiledScene
+from ..compiled import DRY, OUTSIDE_TABLE, SUBMERGED, CompiledScene
 from ..compiled.kernels import poses
 from ..linear import equilibrium_maps
 from ..waves import wavenumber
@@ -144,6 +144,28 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
                 f"wave height {hs:.3g} m exceeds {HEIGHT_LIMIT:g} x the size V^(1/3) = {size:.3g} m of body "
                 f"{name}; linear hydrodynamics lose accuracy"
             )
+    return notes
+
+
+def pressure_notes(compiled: CompiledScene, flags: np.ndarray | None) -> list[str]:
+    """Notes on what the body-exact forces met during a run (``flags``: per body, ORed over the run): a body out of
+    the water, a body wholly under it (its top or deck submerged), points outside the incident field's table."""
+    if flags is None or not np.any(flags):
+        return []
+    names = list(compiled.device.model.body_names)
+    notes = []
+    for bit, what in (
+        (DRY, "left the water entirely at some instant (no pressure force then)"),
+        (SUBMERGED, "went wholly under the incident surface at some instant (its top or deck submerged)"),
+    ):
+        which = [names[i] for i in np.flatnonzero(flags & bit)]
+        if which:
+            notes.append(f"body-exact hydrodynamics: {', '.join(which)} {what}")
+    if np.any(flags & OUTSIDE_TABLE):
+        notes.append(
+            "body-exact hydrodynamics: points of the meshes left the incident field's table (evaluated by direct sums "
+            "there: exact but slower); the motion reached beyond the regions the table was built for"
+        )
     return notes
 
 

@@ -40,6 +40,9 @@ class Record:
         amplitudes per frequency; None for time-domain runs.
     hydro_order : ndarray or None
         The hydro DOFs of the columns of ``rad`` and ``exc``, as indices into the database's (None: its order).
+    pressure_flags : int ndarray (n_body,) or None
+        The body-exact forces' flags per body, ORed over the run (``wecss.compiled`` DRY, SUBMERGED,
+        OUTSIDE_TABLE); None for runs without them.
     """
 
     time: np.ndarray
@@ -50,6 +53,7 @@ class Record:
     limits: np.ndarray | None = None
     spectral: Any = None
     hydro_order: np.ndarray | None = None
+    pressure_flags: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         missing = sorted(set(CHANNEL_NAMES) - set(self.series))

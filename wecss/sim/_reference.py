@@ -82,7 +82,14 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
         print(f"reference solver: {sol.nfev} evaluations", file=sys.stderr)
     saved = {k: v[::every] for k, v in stack.items()}
     solver = {"solver": "reference", "function_evaluations": int(sol.nfev)}
-    return Record(time=time[::every], series=saved, stats=stats, run_time=run_time, solver=solver)
+    return Record(
+        time=time[::every],
+        series=saved,
+        stats=stats,
+        run_time=run_time,
+        solver=solver,
+        pressure_flags=work.terms.flags.copy(),
+    )
 
 
 REFERENCE = ReferenceSolver()
