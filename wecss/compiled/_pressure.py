@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from ._jit import inline_kernel, kernel
+from ._jit import inline_kernel
 from ._wave_field import CALM, FieldArrays, field_update, incident_elevation, incident_head, stretched_height
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -184,7 +184,7 @@ def _add_moments(acc: np.ndarray, ax, ay, az, bx, by, bz, cx, cy, cz) -> None:
     acc[23] += qxz * ny - qyz * nx
 
 
-@kernel
+@inline_kernel
 def _point_head(field: FieldArrays, wx: float, wy: float, wz: float) -> tuple[float, int]:
     """The incident pressure head [m] at a world point of the wet part, Wheeler-stretched, taken at z' = 0 above
     eta (see the module docstring); and flags."""
@@ -221,11 +221,16 @@ def _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, 
     return flags
 
 
-@kernel
-def _add_piece(mesh, field, rot, pos, include_fk, ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc) -> int:
-    """Add a wet piece (body-frame corners a, b, c with incident heads ha, hb, hc): its surface moments and, with
+@inline_kernel
+def _add_piece(  # type: ignore[no-untyped-def]
+    mesh, field, rot, pos, include_fk, with_moments, corners
+) -> int:
+    """Add a wet piece, ``corners`` = (ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc): body-frame corners a, b, c
+    with their incident heads; its surface moments (with ``with_moments``; a whole face's are precomputed) and, with
     ``include_fk``, its Froude-Krylov force. Returns flags."""
-    _add_moments(mesh.acc, ax, ay, az, bx, by, bz, cx, cy, cz)
+    ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc = corners
+    if with_moments:
+        _add_moments(mesh.acc, ax, ay, az, bx, by, bz, cx, cy, cz)
     if not include_fk:
         return 0
     mx = (ax + bx + cx) / 3.0
@@ -237,7 +242,7 @@ def _add_piece(mesh, field, rot, pos, include_fk, ax, ay, az, ha, bx, by, bz, hb
     return _add_fk(mesh.acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
 
 
-@kernel
+@inline_kernel
 def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float, float, float, int]:
     """The cut point at the fraction s from vertex i (wet) to vertex j (dry): body-frame coordinates, incident
     head and flags."""
@@ -254,7 +259,7 @@ def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float,
     return x, y, z, head, flags
 
 
-@kernel
+@inline_kernel
 def mesh_pressure_force(
     mesh: MeshArrays,
     rot: np.ndarray,
@@ -334,55 +339,52 @@ def mesh_pressure_force(
         i0, i1, i2 = faces[f, 0], faces[f, 1], faces[f, 2]
         d0, d1, d2 = height[i0], height[i1], height[i2]
         w0, w1, w2 = d0 < 0.0, d1 < 0.0, d2 < 0.0
-        if not (w0 or w1 or w2):
+        n_corners = w0 + w1 + w2
+        if n_corners == 0:
             continue
-        if w0 and w1 and w2:
+        whole = n_corners == 3
+        if whole:
             n_wet += 1
             for q in range(24):
                 acc[q] += mesh.moments[f, q]
-            if include_fk:
-                wx = (world[i0, 0] + world[i1, 0] + world[i2, 0]) / 3.0
-                wy = (world[i0, 1] + world[i1, 1] + world[i2, 1]) / 3.0
-                wz = (world[i0, 2] + world[i1, 2] + world[i2, 2]) / 3.0
-                flags |= _add_fk(
-                    acc, field,
-                    vertices[i0, 0], vertices[i0, 1], vertices[i0, 2],
-                    vertices[i1, 0], vertices[i1, 1], vertices[i1, 2],
-                    vertices[i2, 0], vertices[i2, 1], vertices[i2, 2],
-                    wx, wy, wz, head[i0], head[i1], head[i2],
-                )  # fmt: skip
-            continue
-        n_cut += 1
-        # corners in cyclic order starting at the odd one out: a wet corner (one wet) or the corner after the dry
-        # one (two wet)
-        single = (w0 + w1 + w2) == 1
-        if single:
-            ia, ib, ic = (i0, i1, i2) if w0 else ((i1, i2, i0) if w1 else (i2, i0, i1))
+            if not include_fk:
+                continue
+            ia, ib, ic = i0, i1, i2
         else:
-            ia, ib, ic = (i1, i2, i0) if not w0 else ((i2, i0, i1) if not w1 else (i0, i1, i2))
-        da, db, dc = height[ia], height[ib], height[ic]
+            n_cut += 1
+            # corners in cyclic order starting at the odd one out: the wet corner (one wet) or the corner after
+            # the dry one (two wet)
+            single = n_corners == 1
+            if single:
+                ia, ib, ic = (i0, i1, i2) if w0 else ((i1, i2, i0) if w1 else (i2, i0, i1))
+            else:
+                ia, ib, ic = (i1, i2, i0) if not w0 else ((i2, i0, i1) if not w1 else (i0, i1, i2))
         ax, ay, az = vertices[ia, 0], vertices[ia, 1], vertices[ia, 2]
-        if single:  # the triangle (a, cut a-b, cut a-c)
-            px, py, pz, hp, fp = _cut_head(mesh, field, rot, pos, include_fk, da / (da - db), ia, ib)
-            qx, qy, qz, hq, fq = _cut_head(mesh, field, rot, pos, include_fk, da / (da - dc), ia, ic)
-            flags |= fp | fq
-            flags |= _add_piece(
-                mesh, field, rot, pos, include_fk,
-                ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
-            )  # fmt: skip
-        else:  # a, b wet, c dry: the triangles (a, b, cut b-c) and (a, cut b-c, cut a-c)
-            bx, by, bz = vertices[ib, 0], vertices[ib, 1], vertices[ib, 2]
-            px, py, pz, hp, fp = _cut_head(mesh, field, rot, pos, include_fk, db / (db - dc), ib, ic)
-            qx, qy, qz, hq, fq = _cut_head(mesh, field, rot, pos, include_fk, da / (da - dc), ia, ic)
-            flags |= fp | fq
-            flags |= _add_piece(
-                mesh, field, rot, pos, include_fk,
-                ax, ay, az, head[ia], bx, by, bz, head[ib], px, py, pz, hp,
-            )  # fmt: skip
-            flags |= _add_piece(
-                mesh, field, rot, pos, include_fk,
-                ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
-            )  # fmt: skip
+        bx, by, bz = vertices[ib, 0], vertices[ib, 1], vertices[ib, 2]
+        cx, cy, cz = vertices[ic, 0], vertices[ic, 1], vertices[ic, 2]
+        ha, hb, hc = head[ia], head[ib], head[ic]
+        px = py = pz = hp = qx = qy = qz = hq = 0.0
+        if not whole:
+            # the cut points: on the edges a-b and a-c (one wet corner, a) or b-c and a-c (two, a and b)
+            for e in range(2):
+                i, j = (ia, ic) if e == 1 else ((ia, ib) if single else (ib, ic))
+                x, y, z, hv, fv = _cut_head(mesh, field, rot, pos, include_fk, height[i] / (height[i] - height[j]), i, j)
+                flags |= fv
+                if e == 0:
+                    px, py, pz, hp = x, y, z, hv
+                else:
+                    qx, qy, qz, hq = x, y, z, hv
+        # the wet pieces: the whole face (its moments added above), (a, p, q) for one wet corner, (a, b, p) and
+        # (a, p, q) for two
+        n_pieces = 1 if whole or single else 2
+        for k in range(n_pieces):
+            if whole:
+                corners = (ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc)
+            elif single or k == 1:
+                corners = (ax, ay, az, ha, px, py, pz, hp, qx, qy, qz, hq)
+            else:
+                corners = (ax, ay, az, ha, bx, by, bz, hb, px, py, pz, hp)
+            flags |= _add_piece(mesh, field, rot, pos, include_fk, not whole, corners)
     if n_wet == 0 and n_cut == 0:
         flags |= DRY
     elif n_cut == 0 and n_wet == f1 - f0:

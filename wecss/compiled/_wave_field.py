@@ -160,7 +160,7 @@ def ramp_factor(ramp: float, t: float) -> float:
     return 0.5 * (1.0 - math.cos(math.pi * t / ramp))
 
 
-@kernel
+@inline_kernel
 def field_update(field: FieldArrays, t: float) -> None:
     """Bring the phasors (and the table) to time ``t`` [s] unless they are there already (the ramp included)."""
     if field.kind == CALM or field.time[0] == t:
@@ -241,7 +241,7 @@ def _cell(field: FieldArrays, xp: float) -> tuple[int, float]:
     return i, u - i
 
 
-@kernel
+@inline_kernel
 def incident_elevation(field: FieldArrays, xp: float) -> tuple[float, int]:
     """eta at x' [m] (the field at its current time) and flags (OUTSIDE_TABLE or 0)."""
     if field.kind == CALM:
@@ -267,7 +267,7 @@ def incident_elevation(field: FieldArrays, xp: float) -> tuple[float, int]:
     return eta, 0
 
 
-@kernel
+@inline_kernel
 def incident_head(field: FieldArrays, xp: float, zs: float) -> tuple[float, int]:
     """The pressure head p / (rho g) [m] at x' and stretched height z' <= 0 (the field at its current time),
     and flags (OUTSIDE_TABLE or 0)."""
