@@ -190,7 +190,7 @@ def _point_head(field: FieldArrays, wx: float, wy: float, wz: float) -> tuple[fl
     eta (see the module docstring); and flags."""
     xp = wx * field.cos_direction + wy * field.sin_direction
     eta, f1 = incident_elevation(field, xp)
-    head, f2 = incident_head(field, xp, min(stretched_height(field, wz, eta), 0.0))
+    head, f2 = incident_head(field, xp, min(stretched_height(field.depth, wz, eta), 0.0))
     return head, f1 | f2
 
 
@@ -221,37 +221,40 @@ def _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, 
     return flags
 
 
+# The helpers that take the MeshArrays or FieldArrays are straight-line (the branches are in the caller): an
+# inlined helper with branches that takes a whole tuple of arrays makes numba count references to every array of it
+# at each call (about 0.4 us; see ``wecss.compiled._wave_field``).
+
+
 @inline_kernel
-def _add_piece(mesh, field, rot, pos, include_fk, ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc) -> int:
-    """Add a wet piece (body-frame corners a, b, c with incident heads ha, hb, hc): its surface moments and, with
-    ``include_fk``, its Froude-Krylov force. Returns flags."""
-    _add_moments(mesh.acc, ax, ay, az, bx, by, bz, cx, cy, cz)
-    if not include_fk:
-        return 0
+def _piece_fk(acc, field, rot, pos, ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc) -> int:
+    """Add the Froude-Krylov force of a wet piece (body-frame corners a, b, c with incident heads ha, hb, hc).
+    Returns flags."""
     mx = (ax + bx + cx) / 3.0
     my = (ay + by + cy) / 3.0
     mz = (az + bz + cz) / 3.0
     wx = pos[0] + rot[0, 0] * mx + rot[0, 1] * my + rot[0, 2] * mz
     wy = pos[1] + rot[1, 0] * mx + rot[1, 1] * my + rot[1, 2] * mz
     wz = pos[2] + rot[2, 0] * mx + rot[2, 1] * my + rot[2, 2] * mz
-    return _add_fk(mesh.acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
+    return _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
 
 
 @inline_kernel
-def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float, float, float, int]:
-    """The cut point at the fraction s from vertex i (wet) to vertex j (dry): body-frame coordinates, incident
-    head and flags."""
-    v = mesh.vertices
-    x = v[i, 0] + s * (v[j, 0] - v[i, 0])
-    y = v[i, 1] + s * (v[j, 1] - v[i, 1])
-    z = v[i, 2] + s * (v[j, 2] - v[i, 2])
-    if not include_fk:
-        return x, y, z, 0.0, 0
+def _cut_point(vertices: np.ndarray, s: float, i: int, j: int) -> tuple[float, float, float]:
+    """The point at the fraction s from vertex i (wet) to vertex j (dry), body frame."""
+    x = vertices[i, 0] + s * (vertices[j, 0] - vertices[i, 0])
+    y = vertices[i, 1] + s * (vertices[j, 1] - vertices[i, 1])
+    z = vertices[i, 2] + s * (vertices[j, 2] - vertices[i, 2])
+    return x, y, z
+
+
+@inline_kernel
+def _body_point_head(field, rot, pos, x: float, y: float, z: float) -> tuple[float, int]:
+    """The incident head and flags at the body-frame point (x, y, z)."""
     wx = pos[0] + rot[0, 0] * x + rot[0, 1] * y + rot[0, 2] * z
     wy = pos[1] + rot[1, 0] * x + rot[1, 1] * y + rot[1, 2] * z
     wz = pos[2] + rot[2, 0] * x + rot[2, 1] * y + rot[2, 2] * z
-    head, flags = _point_head(field, wx, wy, wz)
-    return x, y, z, head, flags
+    return _point_head(field, wx, wy, wz)
 
 
 @inline_kernel
@@ -321,7 +324,7 @@ def mesh_pressure_force(
         d = wz - eta if surface_mode == 1 else wz
         height[v] = d
         if include_fk and d < 0.0:
-            hv, fh = incident_head(field, xp, min(stretched_height(field, wz, eta), 0.0))
+            hv, fh = incident_head(field, xp, min(stretched_height(field.depth, wz, eta), 0.0))
             head[v] = hv
             flags |= fh
         else:
@@ -363,26 +366,35 @@ def mesh_pressure_force(
         da, db, dc = height[ia], height[ib], height[ic]
         ax, ay, az = vertices[ia, 0], vertices[ia, 1], vertices[ia, 2]
         if single:  # the triangle (a, cut a-b, cut a-c)
-            px, py, pz, hp, fp = _cut_head(mesh, field, rot, pos, include_fk, da / (da - db), ia, ib)
-            qx, qy, qz, hq, fq = _cut_head(mesh, field, rot, pos, include_fk, da / (da - dc), ia, ic)
-            flags |= fp | fq
-            flags |= _add_piece(
-                mesh, field, rot, pos, include_fk,
-                ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
-            )  # fmt: skip
+            px, py, pz = _cut_point(vertices, da / (da - db), ia, ib)
+            qx, qy, qz = _cut_point(vertices, da / (da - dc), ia, ic)
+            _add_moments(acc, ax, ay, az, px, py, pz, qx, qy, qz)
+            if include_fk:
+                hp, fp = _body_point_head(field, rot, pos, px, py, pz)
+                hq, fq = _body_point_head(field, rot, pos, qx, qy, qz)
+                flags |= fp | fq
+                flags |= _piece_fk(
+                    acc, field, rot, pos,
+                    ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
+                )  # fmt: skip
         else:  # a, b wet, c dry: the triangles (a, b, cut b-c) and (a, cut b-c, cut a-c)
             bx, by, bz = vertices[ib, 0], vertices[ib, 1], vertices[ib, 2]
-            px, py, pz, hp, fp = _cut_head(mesh, field, rot, pos, include_fk, db / (db - dc), ib, ic)
-            qx, qy, qz, hq, fq = _cut_head(mesh, field, rot, pos, include_fk, da / (da - dc), ia, ic)
-            flags |= fp | fq
-            flags |= _add_piece(
-                mesh, field, rot, pos, include_fk,
-                ax, ay, az, head[ia], bx, by, bz, head[ib], px, py, pz, hp,
-            )  # fmt: skip
-            flags |= _add_piece(
-                mesh, field, rot, pos, include_fk,
-                ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
-            )  # fmt: skip
+            px, py, pz = _cut_point(vertices, db / (db - dc), ib, ic)
+            qx, qy, qz = _cut_point(vertices, da / (da - dc), ia, ic)
+            _add_moments(acc, ax, ay, az, bx, by, bz, px, py, pz)
+            _add_moments(acc, ax, ay, az, px, py, pz, qx, qy, qz)
+            if include_fk:
+                hp, fp = _body_point_head(field, rot, pos, px, py, pz)
+                hq, fq = _body_point_head(field, rot, pos, qx, qy, qz)
+                flags |= fp | fq
+                flags |= _piece_fk(
+                    acc, field, rot, pos,
+                    ax, ay, az, head[ia], bx, by, bz, head[ib], px, py, pz, hp,
+                )  # fmt: skip
+                flags |= _piece_fk(
+                    acc, field, rot, pos,
+                    ax, ay, az, head[ia], px, py, pz, hp, qx, qy, qz, hq,
+                )  # fmt: skip
     if n_wet == 0 and n_cut == 0:
         flags |= DRY
     elif n_cut == 0 and n_wet == f1 - f0:
