@@ -190,7 +190,7 @@ def _point_head(field: FieldArrays, wx: float, wy: float, wz: float) -> tuple[fl
     eta (see the module docstring); and flags."""
     xp = wx * field.cos_direction + wy * field.sin_direction
     eta, f1 = incident_elevation(field, xp)
-    head, f2 = incident_head(field, xp, min(stretched_height(field, wz, eta), 0.0))
+    head, f2 = incident_head(field, xp, min(stretched_height(field.depth, wz, eta), 0.0))
     return head, f1 | f2
 
 
@@ -221,42 +221,40 @@ def _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, 
     return flags
 
 
+# The helpers that take the MeshArrays or FieldArrays are straight-line (the branches are in the caller): an
+# inlined helper with branches that takes a whole tuple of arrays makes numba count references to every array of it
+# at each call (about 0.4 us; see ``wecss.compiled._wave_field``).
+
+
 @inline_kernel
-def _add_piece(  # type: ignore[no-untyped-def]
-    mesh, field, rot, pos, include_fk, with_moments, corners
-) -> int:
-    """Add a wet piece, ``corners`` = (ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc): body-frame corners a, b, c
-    with their incident heads; its surface moments (with ``with_moments``; a whole face's are precomputed) and, with
-    ``include_fk``, its Froude-Krylov force. Returns flags."""
-    ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc = corners
-    if with_moments:
-        _add_moments(mesh.acc, ax, ay, az, bx, by, bz, cx, cy, cz)
-    if not include_fk:
-        return 0
+def _piece_fk(acc, field, rot, pos, ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc) -> int:
+    """Add the Froude-Krylov force of a wet piece (body-frame corners a, b, c with incident heads ha, hb, hc).
+    Returns flags."""
     mx = (ax + bx + cx) / 3.0
     my = (ay + by + cy) / 3.0
     mz = (az + bz + cz) / 3.0
     wx = pos[0] + rot[0, 0] * mx + rot[0, 1] * my + rot[0, 2] * mz
     wy = pos[1] + rot[1, 0] * mx + rot[1, 1] * my + rot[1, 2] * mz
     wz = pos[2] + rot[2, 0] * mx + rot[2, 1] * my + rot[2, 2] * mz
-    return _add_fk(mesh.acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
+    return _add_fk(acc, field, ax, ay, az, bx, by, bz, cx, cy, cz, wx, wy, wz, ha, hb, hc)
 
 
 @inline_kernel
-def _cut_head(mesh, field, rot, pos, include_fk, s, i, j) -> tuple[float, float, float, float, int]:
-    """The cut point at the fraction s from vertex i (wet) to vertex j (dry): body-frame coordinates, incident
-    head and flags."""
-    v = mesh.vertices
-    x = v[i, 0] + s * (v[j, 0] - v[i, 0])
-    y = v[i, 1] + s * (v[j, 1] - v[i, 1])
-    z = v[i, 2] + s * (v[j, 2] - v[i, 2])
-    if not include_fk:
-        return x, y, z, 0.0, 0
+def _cut_point(vertices: np.ndarray, s: float, i: int, j: int) -> tuple[float, float, float]:
+    """The point at the fraction s from vertex i (wet) to vertex j (dry), body frame."""
+    x = vertices[i, 0] + s * (vertices[j, 0] - vertices[i, 0])
+    y = vertices[i, 1] + s * (vertices[j, 1] - vertices[i, 1])
+    z = vertices[i, 2] + s * (vertices[j, 2] - vertices[i, 2])
+    return x, y, z
+
+
+@inline_kernel
+def _body_point_head(field, rot, pos, x: float, y: float, z: float) -> tuple[float, int]:
+    """The incident head and flags at the body-frame point (x, y, z)."""
     wx = pos[0] + rot[0, 0] * x + rot[0, 1] * y + rot[0, 2] * z
     wy = pos[1] + rot[1, 0] * x + rot[1, 1] * y + rot[1, 2] * z
     wz = pos[2] + rot[2, 0] * x + rot[2, 1] * y + rot[2, 2] * z
-    head, flags = _point_head(field, wx, wy, wz)
-    return x, y, z, head, flags
+    return _point_head(field, wx, wy, wz)
 
 
 @inline_kernel
@@ -305,6 +303,7 @@ def mesh_pressure_force(
     v0, v1 = mesh.vertex_start[body], mesh.vertex_start[body + 1]
     f0, f1 = mesh.face_start[body], mesh.face_start[body + 1]
     vertices, faces, world, height, head, acc = mesh.vertices, mesh.faces, mesh.world, mesh.height, mesh.head, mesh.acc
+    moments = mesh.moments
     use_field = field.kind != CALM and (surface_mode == 1 or include_fk)
     flags = 0
     if use_field:
@@ -326,7 +325,7 @@ def mesh_pressure_force(
         d = wz - eta if surface_mode == 1 else wz
         height[v] = d
         if include_fk and d < 0.0:
-            hv, fh = incident_head(field, xp, min(stretched_height(field, wz, eta), 0.0))
+            hv, fh = incident_head(field, xp, min(stretched_height(field.depth, wz, eta), 0.0))
             head[v] = hv
             flags |= fh
         else:
@@ -337,16 +336,16 @@ def mesh_pressure_force(
     n_cut = 0
     for f in range(f0, f1):
         i0, i1, i2 = faces[f, 0], faces[f, 1], faces[f, 2]
-        d0, d1, d2 = height[i0], height[i1], height[i2]
-        w0, w1, w2 = d0 < 0.0, d1 < 0.0, d2 < 0.0
+        w0, w1, w2 = height[i0] < 0.0, height[i1] < 0.0, height[i2] < 0.0
         n_corners = w0 + w1 + w2
         if n_corners == 0:
             continue
         whole = n_corners == 3
+        single = n_corners == 1
         if whole:
             n_wet += 1
             for q in range(24):
-                acc[q] += mesh.moments[f, q]
+                acc[q] += moments[f, q]
             if not include_fk:
                 continue
             ia, ib, ic = i0, i1, i2
@@ -354,7 +353,6 @@ def mesh_pressure_force(
             n_cut += 1
             # corners in cyclic order starting at the odd one out: the wet corner (one wet) or the corner after
             # the dry one (two wet)
-            single = n_corners == 1
             if single:
                 ia, ib, ic = (i0, i1, i2) if w0 else ((i1, i2, i0) if w1 else (i2, i0, i1))
             else:
@@ -365,26 +363,33 @@ def mesh_pressure_force(
         ha, hb, hc = head[ia], head[ib], head[ic]
         px = py = pz = hp = qx = qy = qz = hq = 0.0
         if not whole:
-            # the cut points: on the edges a-b and a-c (one wet corner, a) or b-c and a-c (two, a and b)
+            # the cut points: on the edges a-b and a-c (one wet corner, a), or b-c and a-c (two, a and b); one call
+            # site of each helper, so that numba inlines the field's code once (compile time)
             for e in range(2):
                 i, j = (ia, ic) if e == 1 else ((ia, ib) if single else (ib, ic))
-                x, y, z, hv, fv = _cut_head(mesh, field, rot, pos, include_fk, height[i] / (height[i] - height[j]), i, j)
-                flags |= fv
+                x, y, z = _cut_point(vertices, height[i] / (height[i] - height[j]), i, j)
+                hv = 0.0
+                if include_fk:
+                    hv, fv = _body_point_head(field, rot, pos, x, y, z)
+                    flags |= fv
                 if e == 0:
                     px, py, pz, hp = x, y, z, hv
                 else:
                     qx, qy, qz, hq = x, y, z, hv
-        # the wet pieces: the whole face (its moments added above), (a, p, q) for one wet corner, (a, b, p) and
+        # the wet pieces: the whole face (its moments precomputed), (a, p, q) for one wet corner, (a, b, p) and
         # (a, p, q) for two
-        n_pieces = 1 if whole or single else 2
-        for k in range(n_pieces):
+        for k in range(1 if whole or single else 2):
             if whole:
                 corners = (ax, ay, az, ha, bx, by, bz, hb, cx, cy, cz, hc)
             elif single or k == 1:
                 corners = (ax, ay, az, ha, px, py, pz, hp, qx, qy, qz, hq)
             else:
                 corners = (ax, ay, az, ha, bx, by, bz, hb, px, py, pz, hp)
-            flags |= _add_piece(mesh, field, rot, pos, include_fk, not whole, corners)
+            ux, uy, uz, uh, vx, vy, vz, vh, sx, sy, sz, sh = corners
+            if not whole:
+                _add_moments(acc, ux, uy, uz, vx, vy, vz, sx, sy, sz)
+            if include_fk:
+                flags |= _piece_fk(acc, field, rot, pos, ux, uy, uz, uh, vx, vy, vz, vh, sx, sy, sz, sh)
     if n_wet == 0 and n_cut == 0:
         flags |= DRY
     elif n_cut == 0 and n_wet == f1 - f0:

@@ -142,11 +142,11 @@ def vertical_profile(k: float, zs: float, depth: float) -> float:
 
 
 @inline_kernel
-def stretched_height(field: FieldArrays, z: float, eta: float) -> float:
-    """Wheeler's stretched height z' = (z - eta) h / (h + eta), or z - eta in deep water [m]."""
-    if math.isinf(field.depth):
+def stretched_height(depth: float, z: float, eta: float) -> float:
+    """Wheeler's stretched height z' = (z - eta) h / (h + eta) in water of depth h, or z - eta in deep water [m]."""
+    if math.isinf(depth):
         return z - eta
-    return (z - eta) * field.depth / (field.depth + eta)
+    return (z - eta) * depth / (depth + eta)
 
 
 @inline_kernel
@@ -208,99 +208,151 @@ def field_update(field: FieldArrays, t: float) -> None:
 
 
 @inline_kernel
-def _direct_elevation(field: FieldArrays, xp: float) -> float:
+def _direct_elevation(phasor: np.ndarray, wavenumber: np.ndarray, xp: float) -> float:
     eta = 0.0
-    for k in range(field.omega.shape[0]):
-        phase = -field.wavenumber[k] * xp
-        c = field.phasor[k]
+    for k in range(phasor.shape[0]):
+        phase = -wavenumber[k] * xp
+        c = phasor[k]
         eta += c.real * math.cos(phase) - c.imag * math.sin(phase)
     return eta
 
 
 @inline_kernel
-def _direct_head(field: FieldArrays, xp: float, zs: float) -> float:
+def _direct_head(phasor: np.ndarray, wavenumber: np.ndarray, depth: float, xp: float, zs: float) -> float:
     head = 0.0
-    for k in range(field.omega.shape[0]):
-        phase = -field.wavenumber[k] * xp
-        c = field.phasor[k]
-        head += (c.real * math.cos(phase) - c.imag * math.sin(phase)) * vertical_profile(
-            field.wavenumber[k], zs, field.depth
-        )
+    for k in range(phasor.shape[0]):
+        phase = -wavenumber[k] * xp
+        c = phasor[k]
+        head += (c.real * math.cos(phase) - c.imag * math.sin(phase)) * vertical_profile(wavenumber[k], zs, depth)
     return head
 
 
+# The helpers below that branch take the field's arrays, not the FieldArrays: an inlined helper with branches that
+# takes the whole tuple makes numba count references to every array of it at each call (about 0.4 us), even on
+# paths that never use them. The public functions taking ``field`` are straight-line wrappers.
+
+
 @inline_kernel
-def _cell(field: FieldArrays, xp: float) -> tuple[int, float]:
+def _cell(x_start: float, x_step: float, active: np.ndarray, xp: float) -> tuple[int, float]:
     """The table cell [i, i + 1] holding x' and the fraction s in it, or (-1, 0) when off the active nodes."""
-    u = (xp - field.x_start) / field.x_step
-    if not (u >= 0.0 and u < field.active.shape[0] - 1):
+    u = (xp - x_start) / x_step
+    if not (u >= 0.0 and u < active.shape[0] - 1):
         return -1, 0.0
     i = int(u)
-    if field.active[i] == 0 or field.active[i + 1] == 0:
+    if active[i] == 0 or active[i + 1] == 0:
         return -1, 0.0
     return i, u - i
 
 
 @inline_kernel
-def incident_elevation(field: FieldArrays, xp: float) -> tuple[float, int]:
-    """eta at x' [m] (the field at its current time) and flags (OUTSIDE_TABLE or 0)."""
-    if field.kind == CALM:
+def _elevation(
+    kind: int,
+    phasor: np.ndarray,
+    wavenumber: np.ndarray,
+    x_start: float,
+    x_step: float,
+    active: np.ndarray,
+    elevation: np.ndarray,
+    elevation_slope: np.ndarray,
+    status: np.ndarray,
+    xp: float,
+) -> tuple[float, int]:
+    if kind == CALM:
         return 0.0, 0
-    if field.kind == DIRECT:
-        return _direct_elevation(field, xp), 0
-    i, s = _cell(field, xp)
+    if kind == DIRECT:
+        return _direct_elevation(phasor, wavenumber, xp), 0
+    i, s = _cell(x_start, x_step, active, xp)
     if i < 0:
-        field.status[0] |= OUTSIDE_TABLE
-        return _direct_elevation(field, xp), OUTSIDE_TABLE
-    h = field.x_step
+        status[0] |= OUTSIDE_TABLE
+        return _direct_elevation(phasor, wavenumber, xp), OUTSIDE_TABLE
+    h = x_step
     r = 1.0 - s
     h00 = (1.0 + 2.0 * s) * r * r
     h10 = s * r * r * h
     h01 = s * s * (3.0 - 2.0 * s)
     h11 = -s * s * r * h
-    eta = (
-        h00 * field.elevation[i]
-        + h10 * field.elevation_slope[i]
-        + h01 * field.elevation[i + 1]
-        + h11 * field.elevation_slope[i + 1]
-    )
+    eta = h00 * elevation[i] + h10 * elevation_slope[i] + h01 * elevation[i + 1] + h11 * elevation_slope[i + 1]
     return eta, 0
+
+
+@inline_kernel
+def incident_elevation(field: FieldArrays, xp: float) -> tuple[float, int]:
+    """eta at x' [m] (the field at its current time) and flags (OUTSIDE_TABLE or 0)."""
+    return _elevation(
+        field.kind,
+        field.phasor,
+        field.wavenumber,
+        field.x_start,
+        field.x_step,
+        field.active,
+        field.elevation,
+        field.elevation_slope,
+        field.status,
+        xp,
+    )
+
+
+@inline_kernel
+def _head(
+    kind: int,
+    phasor: np.ndarray,
+    wavenumber: np.ndarray,
+    depth: float,
+    x_start: float,
+    x_step: float,
+    active: np.ndarray,
+    z_min: float,
+    head: np.ndarray,
+    head_slope: np.ndarray,
+    status: np.ndarray,
+    xp: float,
+    zs: float,
+) -> tuple[float, int]:
+    if kind == CALM:
+        return 0.0, 0
+    if kind == DIRECT:
+        return _direct_head(phasor, wavenumber, depth, xp, zs), 0
+    i, s = _cell(x_start, x_step, active, xp)
+    if i < 0 or zs < z_min:
+        status[0] |= OUTSIDE_TABLE
+        return _direct_head(phasor, wavenumber, depth, xp, zs), OUTSIDE_TABLE
+    h = x_step
+    r = 1.0 - s
+    h00 = (1.0 + 2.0 * s) * r * r
+    h10 = s * r * r * h
+    h01 = s * s * (3.0 - 2.0 * s)
+    h11 = -s * s * r * h
+    u = 1.0 - 2.0 * zs / z_min  # z' = 0 -> 1, z' = z_min -> -1
+    b1 = 0.0
+    b2 = 0.0
+    for m in range(head.shape[1] - 1, 0, -1):
+        c = h00 * head[i, m] + h10 * head_slope[i, m] + h01 * head[i + 1, m] + h11 * head_slope[i + 1, m]
+        b = c + 2.0 * u * b1 - b2
+        b2 = b1
+        b1 = b
+    c0 = h00 * head[i, 0] + h10 * head_slope[i, 0] + h01 * head[i + 1, 0] + h11 * head_slope[i + 1, 0]
+    return c0 + u * b1 - b2, 0
 
 
 @inline_kernel
 def incident_head(field: FieldArrays, xp: float, zs: float) -> tuple[float, int]:
     """The pressure head p / (rho g) [m] at x' and stretched height z' <= 0 (the field at its current time),
     and flags (OUTSIDE_TABLE or 0)."""
-    if field.kind == CALM:
-        return 0.0, 0
-    if field.kind == DIRECT:
-        return _direct_head(field, xp, zs), 0
-    i, s = _cell(field, xp)
-    if i < 0 or zs < field.z_min:
-        field.status[0] |= OUTSIDE_TABLE
-        return _direct_head(field, xp, zs), OUTSIDE_TABLE
-    h = field.x_step
-    r = 1.0 - s
-    h00 = (1.0 + 2.0 * s) * r * r
-    h10 = s * r * r * h
-    h01 = s * s * (3.0 - 2.0 * s)
-    h11 = -s * s * r * h
-    u = 1.0 - 2.0 * zs / field.z_min  # z' = 0 -> 1, z' = z_min -> -1
-    b1 = 0.0
-    b2 = 0.0
-    for m in range(field.profile.shape[0] - 1, 0, -1):
-        c = (
-            h00 * field.head[i, m]
-            + h10 * field.head_slope[i, m]
-            + h01 * field.head[i + 1, m]
-            + h11 * field.head_slope[i + 1, m]
-        )
-        b = c + 2.0 * u * b1 - b2
-        b2 = b1
-        b1 = b
-    c0 = h00 * field.head[i, 0] + h10 * field.head_slope[i, 0] + h01 * field.head[i + 1, 0]
-    c0 += h11 * field.head_slope[i + 1, 0]
-    return c0 + u * b1 - b2, 0
+    return _head(
+        field.kind,
+        field.phasor,
+        field.wavenumber,
+        field.depth,
+        field.x_start,
+        field.x_step,
+        field.active,
+        field.z_min,
+        field.head,
+        field.head_slope,
+        field.status,
+        xp,
+        zs,
+    )
 
 
 @inline_kernel
@@ -321,7 +373,7 @@ def field_pressure(field: FieldArrays, x: float, y: float, z: float, t: float) -
     eta, _ = incident_elevation(field, xp)
     if z > eta:
         return 0.0
-    head, _ = incident_head(field, xp, stretched_height(field, z, eta))
+    head, _ = incident_head(field, xp, stretched_height(field.depth, z, eta))
     return field.rho * field.g * head
 
 

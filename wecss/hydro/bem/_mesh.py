@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ..mesh import radial_scale as _radial_scale
 from ._lazy import import_capytaine
 from ._profile import AxisymmetricProfile
 
@@ -54,9 +55,9 @@ def sectors_for(radius: float, panel_size: float) -> int:
 
 
 def radial_scale(n_sectors: int) -> float:
-    """Factor on radii that gives a regular ``n_sectors``-gon the area of its circle."""
-    theta = 2 * np.pi / n_sectors
-    return float(np.sqrt(theta / np.sin(theta)))
+    """Factor on radii that gives a regular ``n_sectors``-gon the area of its circle (the surface meshes' own,
+    :func:`wecss.hydro.mesh.radial_scale`)."""
+    return _radial_scale(n_sectors)
 
 
 def revolve(points_rz: np.ndarray, n_sectors: int, *, preserve_area: bool = False, name: str | None = None) -> Any:

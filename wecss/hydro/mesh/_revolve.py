@@ -25,7 +25,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ._surface import SurfaceMesh
 
@@ -77,6 +76,8 @@ def arc_points(
     points = np.column_stack([center[0] + radius * np.cos(angles), center[1] + radius * np.sin(angles)])
     if not preserve_volume or segments < 2:
         return points
+    from scipy.optimize import brentq  # deferred: importing wecss loads no scipy.optimize (tests/test_imports.py)
+
     target = _arc_volume(center, radius, angle_start, angle_end)
     inner = points[1:-1] - np.asarray(center)
 
