@@ -1,0 +1,79 @@
+"""Benchmark: the cost per step of the body-exact hydrodynamics (``docs/nonlinear_hydro.md``) on m4-134 in the
+default sea state (JONSWAP, Beeman, dt = Tp/200): everything off, body-exact hydrostatics, and hydrostatics with the
+Froude-Krylov force; the triangles and points per step and the cost per triangle and per point.
+
+    OPENBLAS_NUM_THREADS=1 python studies/bench_pressure.py          # writes docs/benchmarks.md, "Body-exact ..."
+    python studies/bench_pressure.py --quick                         # a short run of each, printed
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import datetime
+import os
+
+import numpy as np
+from _common import ROOT, write_section
+
+from wecss.sim import Scene, compile_scene, default_scene_path, simulate
+
+CASES = (
+    ("everything off", {}),
+    ("body-exact hydrostatics", {"hydrostatics": "body-exact"}),
+    ("body-exact hydrostatics and Froude-Krylov", {"hydrostatics": "body-exact", "froude_krylov": "body-exact"}),
+)
+
+
+def per_step(scene: Scene, repeats: int) -> tuple[float, float]:
+    """Median and smallest time of the time loop per step [s] over ``repeats`` runs (the first, which compiles,
+    left out)."""
+    compiled = compile_scene(scene)
+    simulate(dataclasses.replace(scene, sea=dataclasses.replace(scene.sea, duration=scene.dt * 50)))
+    times = [simulate(compiled).attrs["run_time_s"] / compiled.n_steps for _ in range(repeats)]
+    return float(np.median(times)), float(np.min(times))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="short runs, printed")
+    args = parser.parse_args()
+    base = Scene.from_toml(default_scene_path())
+    base = Scene.from_dict({**base.to_dict(), "device": {"name": "m4-134"}, "outputs": {"variables": ["pto"]}})
+    if args.quick:
+        base = dataclasses.replace(base, sea=dataclasses.replace(base.sea, duration=20 * base.dt))
+    repeats = 1 if args.quick else 3
+    rows = []
+    for name, hydrodynamics in CASES:
+        scene = Scene.from_dict({**base.to_dict(), "hydrodynamics": hydrodynamics})
+        median, least = per_step(scene, repeats)
+        pressure = compile_scene(scene).plant.pressure
+        rows.append((name, median, least, pressure.mesh.faces.shape[0], pressure.mesh.vertices.shape[0]))
+        print(f"{name}: {median * 1e6:.1f} us per step (least {least * 1e6:.1f})", flush=True)
+    if args.quick:
+        return
+    off = rows[0][1]
+    lines = [
+        "## Body-exact hydrodynamics per step (`studies/bench_pressure.py`)",
+        "",
+        f"m4-134, the default JONSWAP sea state, Beeman, dt = Tp/200, state-space radiation; median of {repeats} runs "
+        f"of the whole record (the time loop alone), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}; "
+        f"{datetime.date.today()}, load average {os.getloadavg()[0]:.1f} at the end. Each step evaluates the "
+        "configuration once (Beeman's corrector reuses it); the meshes are the spec's (`[[meshes]]`).",
+        "",
+        "| case | per step [us] | least [us] | added [us] | triangles | vertices | added per triangle [ns] |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, median, least, faces, vertices in rows:
+        added = median - off
+        per_triangle = f"{added / faces * 1e9:.0f}" if faces else "-"
+        lines.append(
+            f"| {name} | {median * 1e6:.1f} | {least * 1e6:.1f} | {added * 1e6:.1f} | {faces or '-'} | "
+            f"{vertices or '-'} | {per_triangle} |"
+        )
+    write_section(ROOT / "docs" / "benchmarks.md", lines[0], "\n".join(lines))
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
