@@ -26,7 +26,6 @@ from wecss.linear import steady_state
 from wecss.results import mean_power, rms_hinge_angle, save
 from wecss.sim import Scene, compile_scene, linearize, simulate, simulate_linear
 
-
 BODY_EXACT_LAYOUTS = ("m4-134",)
 """Layouts also run with the body-exact hydrostatics and Froude-Krylov force."""
 

@@ -40,7 +40,7 @@ def write_spec(folder: Path) -> Path:
     spec = f"""
 name = "oes-sphere"
 description = "OES Task 10 heaving sphere: R 5 m, centre at the still water level, centre of gravity 2 m below it"
-hydro = "{DATA / 'sphere.h5'}"
+hydro = "{DATA / "sphere.h5"}"
 
 [assumptions]
 inertia = "Ixx = Iyy = 1.690e6, Izz = 2.606e6 kg m^2 (the task's values; only heave moves)"
@@ -78,7 +78,7 @@ joint = "slider"
 
 [[meshes]]
 body = "sphere"
-stl = "{DATA / 'oes_task10_sphere.stl'}"
+stl = "{DATA / "oes_task10_sphere.stl"}"
 """
     path = folder / "oes-sphere.toml"
     path.write_text(spec)
@@ -137,12 +137,12 @@ def regular(spec: Path, period: float, steepness: float, damping: float, hydrody
             "radiation": {"method": "convolution"},
             "hydrodynamics": hydrodynamics,
             "controller": {"name": "damping", "parameters": {"damping": damping}},
-            "outputs": {"variables": ["motion", "pto"], "window": 10 * period},
+            "outputs": {"variables": ["motion", "pto"], "window": 10.0 / cycles},
         }
     )  # fmt: skip
     run = simulate(scene)
     x = run.displacement.sel(dof_linear="slider__heave").values
-    last = x[-int(10 * 100) :]
+    last = x[-(10 * 100) :]
     return float((last.max() - last.min()) / height), float(run.mean_pto_power.values.sum())
 
 

@@ -22,8 +22,15 @@ def test_shipped_meshes_hold_the_databases_volume(name: str) -> None:
 def _spec(**mesh: object) -> dict[str, object]:
     return {
         "name": "one",
-        "bodies": [{"name": "float", "mass": 1.0, "inertia": [1.0, 1.0, 1.0], "center_of_mass": [0.0, 0.0, -0.1],
-                    "hydro_body": "float_1"}],  # fmt: skip
+        "bodies": [
+            {
+                "name": "float",
+                "mass": 1.0,
+                "inertia": [1.0, 1.0, 1.0],
+                "center_of_mass": [0.0, 0.0, -0.1],
+                "hydro_body": "float_1",
+            }
+        ],
         "joints": [{"name": "base", "kind": "free", "child": "float"}],
         "meshes": [mesh],
     }

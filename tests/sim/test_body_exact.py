@@ -43,7 +43,7 @@ def _decay_scene(spec: Path, release: float, **hydrodynamics: str) -> Scene:
             "radiation": {"method": "none"},
             "initial": {"displacement": {"slider__heave": release}},
             "hydrodynamics": hydrodynamics,
-            "outputs": {"variables": ["motion", "hydrodynamics"]},
+            "outputs": {"variables": ["motion", "hydrodynamics"] if hydrodynamics else ["motion"]},
         }
     )
 
@@ -115,18 +115,20 @@ def test_remainder_vanishes_with_its_tangent_at_the_equilibrium() -> None:
     q0 = compiled.q0
     assert np.max(np.abs(_remainder(compiled, q0))) < 1e-12 * weight
     h = 1e-5
+    slopes, stiffness = [], []
     for j in range(q0.size):
         step = np.zeros(q0.size)
         step[j] = h
-        slope = (_remainder(compiled, q0 + step) - _remainder(compiled, q0 - step)) / (2 * h)
+        slopes.append((_remainder(compiled, q0 + step) - _remainder(compiled, q0 - step)) / (2 * h))
         hydrostatic = []
         for sign in (1.0, -1.0):
             p = compiled.plant
             w = workspace(p)
             configure(p, q0 + sign * step, np.zeros(p.hydro_index.size), 0.0, w)
             hydrostatic.append(w.terms.out[:, TERM_ROWS.index("hydrostatic")].copy())
-        stiffness = np.max(np.abs((hydrostatic[0] - hydrostatic[1]) / (2 * h)))
-        assert np.max(np.abs(slope)) < 1e-6 * stiffness, f"coordinate {j}"
+        stiffness.append(np.max(np.abs((hydrostatic[0] - hydrostatic[1]) / (2 * h))))
+    # the remainder's tangent against the mesh's own hydrostatic stiffness (its largest entry, N/m or N m/rad)
+    assert np.max(np.abs(slopes)) < 1e-6 * max(stiffness)
 
 
 def test_free_surface_instantaneous_needs_the_body_exact_froude_krylov_force() -> None:

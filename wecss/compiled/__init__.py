@@ -15,6 +15,8 @@ from ._plant import PtoKind as PtoKind
 from ._plant import build_plant as build_plant
 from ._plant import linear_damping as linear_damping
 from ._plant import mooring_damping_matrix as mooring_damping_matrix
+from ._pressure import DRY as DRY
+from ._pressure import SUBMERGED as SUBMERGED
 from ._pto_law import pto_control_force as pto_control_force
 from ._pto_law import pto_gains as pto_gains
 from ._pto_law import saturate as saturate
@@ -27,7 +29,5 @@ from ._radiation import from_state_space as from_state_space
 from ._radiation import interpolate_matrices as interpolate_matrices
 from ._radiation import memory_response as memory_response
 from ._radiation import no_radiation as no_radiation
-from ._pressure import DRY as DRY
-from ._pressure import SUBMERGED as SUBMERGED
 from ._viscous import TERM_ROWS as TERM_ROWS
 from ._wave_field import OUTSIDE_TABLE as OUTSIDE_TABLE

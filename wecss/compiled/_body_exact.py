@@ -137,6 +137,7 @@ def configure_pressure(
             )
         add_generalised(b_mat, cart_start[i], total, gen)
 
+
 def no_pressure() -> PressureArrays:
     """No body-exact forces (empty arrays, calm field)."""
 

@@ -28,6 +28,7 @@ from ..hydro import HydroData, without_body_interactions
 from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
 from ..scene import Radiation, Scene, SceneError, SeaState
+from ._body_exact import PressureArrays
 from ._kernels import integrate_configuration
 from ._plant import Plant, build_plant
 from ._pto_law import pto_gains
@@ -41,7 +42,6 @@ from ._radiation import (
     no_radiation,
 )
 from ._terms import pressure_arrays, viscous_arrays, wave_arrays
-from ._body_exact import PressureArrays
 from ._viscous import ViscousArrays
 from ._wave_kinematics import no_waves
 

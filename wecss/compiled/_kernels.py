@@ -21,12 +21,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ._body_exact import configure_pressure
 from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
 from ._plant import Plant, PtoKind
 from ._pto_law import pto_control_force_kernel
 from ._rotation import so3_log_into
-from ._body_exact import configure_pressure
 from ._viscous import TermsWork, configure_viscous, respond_viscous, terms_work
 
 _SMALL = 1e-8
@@ -600,11 +600,12 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Wor
 @step_kernel
 def configure_core(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace) -> bool:
     """Everything of the equations of motion (Eq. 46) that depends on the configuration ``q`` and the time ``t`` [s]
-    alone but the body-exact pressure forces, into ``w``: the kinematics, M* = B'(M + A_inf)B and its Cholesky factor, the generalised force of
-    gravity, buoyancy, hydrostatics, the modes' structural stiffness, ``hydro_force`` (n_h,) [N, N m] (excitation
-    plus the memory force fixed by the past, world axes) and the hydrodynamic terms of the scene that depend on the
-    configuration and the waves at ``t`` (``wecss.compiled._viscous``), the PTO strokes and transmissions. Within a
-    step of a predictor-corrector only the velocity changes: :func:`respond` then reuses all of this.
+    alone but the body-exact pressure forces, into ``w``: the kinematics, M* = B'(M + A_inf)B and its Cholesky
+    factor, the generalised force of gravity, buoyancy, hydrostatics, the modes' structural stiffness,
+    ``hydro_force`` (n_h,) [N, N m] (excitation plus the memory force fixed by the past, world axes) and the
+    hydrodynamic terms of the scene that depend on the configuration and the waves at ``t``
+    (``wecss.compiled._viscous``), the PTO strokes and transmissions. Within a step of a predictor-corrector only
+    the velocity changes: :func:`respond` then reuses all of this.
 
     Returns False when M* is not positive definite (a degenerate configuration).
     """

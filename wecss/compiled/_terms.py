@@ -235,9 +235,7 @@ def _buoyancy_tangent(mesh: SurfaceMesh, delta: np.ndarray, com0: np.ndarray, rh
     return out
 
 
-def _database_froude_krylov(
-    coupling: HydroCoupling, owners: list[int], model: Any, unit: WaveComponents
-) -> np.ndarray:
+def _database_froude_krylov(coupling: HydroCoupling, owners: list[int], model: Any, unit: WaveComponents) -> np.ndarray:
     """The database's Froude-Krylov force per unit amplitude of each component (n_mb, n_w, 6), world axes.
 
     Raises

@@ -142,7 +142,8 @@ def read_meshes(spec: Mapping[str, Any], folder: Path | None, model: Multibody) 
             wrong = sorted({"freeboard", "panel_size", "sectors"} & set(entry))
             if wrong:
                 raise ValueError(f"{where}: {wrong} apply to a geometry file's float, not to an STL")
-            position = _floats(entry.get("position", [0.0, 0.0, 0.0]), 3, f"{where}: position [m]")
+            x, y, z = _floats(entry.get("position", [0.0, 0.0, 0.0]), 3, f"{where}: position [m]")
+            position = (x, y, z)
             scale = _positive(entry.get("scale", 1.0), f"{where}: scale")
             open_above = entry.get("open_above")
             if open_above is not None:
