@@ -103,7 +103,7 @@ def build_frame(
     named = {k: np.asarray(v, dtype=float) for k, v in (points or {}).items()}
     ends = np.array([p for m in members for p in (m.start, m.end)], dtype=float)
     size = float(np.ptp(ends, axis=0).max()) or 1.0
-    tol = 1e-6 * size if tolerance is None else float(tolerance)
+    tol = size * 1e-6 if tolerance is None else float(tolerance)
     marks = [*named.values(), *(m.position for m in masses), *ends]
     nodes: list[np.ndarray] = []
 
