@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import xarray as xr
 from scipy.linalg import eig
 
 from ..constants import GRAVITY
@@ -28,6 +29,7 @@ from ._flexible import (
 )
 from ._members import Member, read_members
 from ._spec import DeviceSpecError, build_model, build_moorings, hydro_source, read_spec
+from ._structural_modes import structural_modes
 
 
 @dataclass(frozen=True, eq=False)
@@ -145,6 +147,12 @@ class Device:
             If the body is not flexible.
         """
         return flexible_body(self.model, self.ptos, self.members, self.masses, body, self._flexible_spec(body))
+
+    def structural_modes(self, **options: Any) -> xr.Dataset:
+        """Natural modes of the device with its flexible bodies, in water or in air:
+        :func:`wecss.devices.structural_modes` (its keywords: ``water``, ``hydro``, ``model``, ``n_modes``,
+        ``plane_normal``, ``pto_damping``, ``iterations``)."""
+        return structural_modes(self, **options)
 
     # --- hydrodynamics ----------------------------------------------------------------------------
     def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:
