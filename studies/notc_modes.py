@@ -61,8 +61,7 @@ def unit_load(device: Device) -> tuple[float, float, float]:
     vertically at C."""
     frame = device.structure("arm")
     member = device.member("arm")
-    a, c = frame.point("clamp")[0], frame.point("pto:cylinder")[0]
-    fixed = [*frame.node_dofs(a)[[0, 1, 2, 3, 5]], frame.node_dofs(c)[2]]
+    fixed = [*frame.support("clamp", ("ux", "uy", "uz", "rx", "rz")), *frame.support("pto:cylinder", ("uz",))]
     u = static_response(frame.stiffness, frame.point_load("joint:tip", [0.0, 0.0, 1e3]), fixed)
     spot = member.hot_spots[0]
     sigma = stress_modes(frame, np.eye(frame.n_dof), [StressPoint("arm", spot.at, 0.0, spot.z)]).stresses(u)

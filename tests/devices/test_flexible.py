@@ -39,7 +39,7 @@ def test_the_arm_pinned_at_a_held_at_c_under_1_kn_at_the_tip(notc):
     a_node, c_node = frame.point("clamp")[0], frame.point("pto:cylinder")[0]
     assert np.allclose(frame.nodes[a_node], A) and np.allclose(frame.nodes[c_node], C)
     # pinned at A (a revolute about y: translations, torsion and the rotation about z held), held vertically at C
-    fixed = [*frame.node_dofs(a_node)[[0, 1, 2, 3, 5]], frame.node_dofs(c_node)[2]]
+    fixed = [*frame.support("clamp", ("ux", "uy", "uz", "rx", "rz")), *frame.support("pto:cylinder", ("uz",))]
     p = 1000.0
     u = static_response(frame.stiffness, frame.point_load("joint:tip", [0.0, 0.0, p]), fixed)
     spots = [StressPoint("arm", s.at, s.y, s.z, s.scf, s.name) for s in member.hot_spots]

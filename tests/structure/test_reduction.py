@@ -99,3 +99,17 @@ def test_bad_reductions_are_refused():
         craig_bampton(frame, "root", {"root": "joint"})
     with pytest.raises(ValueError, match="damping_ratio must be a number in"):
         craig_bampton(frame, "root", damping_ratio=1.5)
+
+
+def test_supports_name_components_and_refuse_a_partial_hold_off_a_node():
+    frame = _frame()
+    root = frame.node_dofs(frame.point("root")[0])
+    np.testing.assert_array_equal(frame.support("root", ("ux", "rz")), root[[0, 5]])
+    np.testing.assert_array_equal(frame.support("root"), root)
+    with pytest.raises(ValueError, match=r"unknown components \['spin'\]"):
+        frame.support("root", ("spin",))
+    tube = MemberLine("a", A, B, Section.tube(0.12, 0.006), MATERIALS["S355"])
+    off = build_frame([tube], points={"lug": [0.7, 0.2, 0.0]})  # 0.2 m beside the member: a rigid offset
+    assert len(off.support("lug")) == 6
+    with pytest.raises(ValueError, match="off its node"):
+        off.support("lug", ("uz",))

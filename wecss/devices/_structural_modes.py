@@ -37,8 +37,6 @@ Mode shapes are normalised to a largest point translation of 1 (m), positive.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -47,21 +45,16 @@ import xarray as xr
 from scipy.linalg import eigh
 
 from ..hydro import HydroData
-from ..multibody import ActuatorPTO, HydroCoupling, JointPTO, Multibody, StaticModel, kinematics
-from ..structure import Frame, natural_modes, offset_map
+from ..multibody import ActuatorPTO
+from ..structure import offset_map
+from ._assembly import DeviceSystem, assemble
 
 SHARES = ("in_plane", "out_of_plane", "torsion")
 """Kinds of motion a mode's energy is split into."""
 ENERGIES = ("strain", "kinetic")
 """The energies split."""
-MODELS = ("full", "reduced")
-"""Elastic coordinates: every nodal DOF of a flexible body, or its reduced basis."""
 _GROUPS = (np.array([0, 6]), np.array([3, 9]), np.array([1, 5, 7, 11]), np.array([2, 4, 8, 10]))
 """Local DOFs of an element's axial, torsion, x-y and x-z bending groups."""
-
-
-def _hat(v: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
 def _in_plane(vector: np.ndarray, normal: np.ndarray) -> float:
@@ -82,66 +75,6 @@ def _split(x: np.ndarray, matrix: np.ndarray, normal: np.ndarray) -> tuple[float
     return 0.5 * a @ matrix @ a + cross, 0.5 * b @ matrix @ b + cross
 
 
-@dataclass
-class _Flexible:
-    """One flexible body in the assembly: its frame, elastic basis (n_dof, n), structural damping (n, n), the
-    columns of its coordinates, its rotation and centre of mass at the configuration and its reference centre."""
-
-    name: str
-    frame: Frame
-    basis: np.ndarray
-    damping: np.ndarray
-    columns: slice
-    rotation: np.ndarray
-    position: np.ndarray
-    reference: np.ndarray
-    nodal: np.ndarray | None = None  # N (n_dof, n_z): nodal DOFs (body axes) per coordinate
-
-
-def _elastic_basis(device: Any, name: str, model_kind: str) -> tuple[Frame, np.ndarray, np.ndarray]:
-    """Frame, basis and structural damping of a flexible body: every DOF but the clamp's, or the reduced basis."""
-    zeta = device.flexible[name].damping_ratio
-    if model_kind == "reduced":
-        body = device.flexible_body(name)
-        return body.frame, body.basis.basis, body.basis.damping
-    frame = device.structure(name)
-    clamp = frame.node_dofs(frame.point("clamp")[0])
-    free = np.setdiff1d(np.arange(frame.n_dof), clamp)
-    basis = np.eye(frame.n_dof)[:, free]
-    omega, shapes = natural_modes(frame.stiffness, frame.mass, fixed=clamp)
-    mode_forces = frame.mass @ shapes
-    damping = basis.T @ (mode_forces * (2 * zeta * omega)) @ mode_forces.T @ basis
-    return frame, basis, damping
-
-
-def _subtrees(model: Multibody) -> dict[int, list[int]]:
-    """Each body's subtree (itself and its descendants)."""
-    children: dict[int, list[int]] = {i: [] for i in range(len(model.bodies))}
-    for i, p in enumerate(model.parent):
-        if p >= 0:
-            children[p].append(i)
-    out = {}
-    for i in range(len(model.bodies)):
-        stack, found = [i], []
-        while stack:
-            k = stack.pop()
-            found.append(k)
-            stack.extend(children[k])
-        out[i] = found
-    return out
-
-
-def _hydro_matrices(coupling: HydroCoupling) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """omega (n_w,), A(omega) (n_w, n_h, n_h), B(omega) and A_inf (n_h, n_h) of the database on its DOFs."""
-    ds = coupling.hydro.dataset
-    dofs = list(coupling.hydro.dofs)
-    sel = {"influenced_dof": dofs, "radiating_dof": dofs}
-    omega = ds.omega.values
-    added = ds.added_mass.sel(sel).transpose("omega", "influenced_dof", "radiating_dof").values
-    damping = ds.radiation_damping.sel(sel).transpose("omega", "influenced_dof", "radiating_dof").values
-    return omega, added, damping, ds.added_mass_inf.sel(sel).values
-
-
 def _eig(stiffness: np.ndarray, mass: np.ndarray, shift: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """Eigenvalues omega^2 (ascending) and mass-normalised vectors of K phi = omega^2 M phi, by the reciprocal of
     the shifted problem M phi = 1 / (omega^2 + s) (K + s M) phi (s = ``shift`` [rad^2/s^2]): its largest values, the
@@ -154,17 +87,6 @@ def _eig(stiffness: np.ndarray, mass: np.ndarray, shift: float = 1.0) -> tuple[n
     except np.linalg.LinAlgError:
         values, vectors = eigh(stiffness, mass)
     return values, vectors / np.sqrt(np.einsum("ij,ik,kj->j", vectors, mass, vectors))
-
-
-def _at(omega: float, grid: np.ndarray, values: np.ndarray, above: np.ndarray) -> np.ndarray:
-    """Linear interpolation of ``values`` (n_w, n, n) at omega: the first value below the grid, ``above`` beyond."""
-    if omega > grid[-1]:
-        return above
-    if omega <= grid[0]:
-        return values[0]
-    k = int(np.searchsorted(grid, omega)) - 1
-    t = (omega - grid[k]) / (grid[k + 1] - grid[k])
-    return (1 - t) * values[k] + t * values[k + 1]
 
 
 class _Points:
@@ -241,149 +163,16 @@ def structural_modes(
         On an unknown model, a bad number of modes or plane normal, a body with generalised modes, or (in water) a
         device without a database or equilibrium.
     """
-    mb = device.model
-    if model not in MODELS:
-        raise ValueError(f"model {model!r}; accepted: {list(MODELS)}")
     if isinstance(n_modes, bool) or not isinstance(n_modes, int) or n_modes < 1:
         raise ValueError(f"n_modes must be an integer >= 1; got {n_modes!r}")
     normal = np.asarray(plane_normal, dtype=float)
     if normal.shape != (3,) or not np.linalg.norm(normal) > 0:
         raise ValueError(f"plane_normal must be a non-zero vector [x, y, z]; got {plane_normal!r}")
     normal = normal / np.linalg.norm(normal)
-    if mb.n_modes:
-        raise ValueError(
-            f"device {device.name!r}: bodies with generalised modes ({', '.join(mb.mode_names)}) are not supported by "
-            "the structural modal analysis; declare flexible bodies instead"
-        )
-    coupling: HydroCoupling | None
-    if water:
-        statics = device.statics(hydro)
-        q = statics.equilibrium()
-        coupling = statics.coupling
-    else:
-        statics = StaticModel(mb, 0.0, None, device.ptos)
-        q = mb.neutral_configuration()
-        coupling = None
-    k_rr = statics.stiffness(q) if mb.nv else np.zeros((0, 0))
-    st = kinematics(mb, q)
-    nv = mb.nv
-    flex: dict[int, _Flexible] = {}
-    column = nv
-    for name in device.flexible:
-        i = mb.body_names.index(name)
-        frame, basis, damping = _elastic_basis(device, name, model)
-        n = basis.shape[1]
-        flex[i] = _Flexible(name, frame, basis, damping, slice(column, column + n), st.rotation[i], st.position[i],
-                            mb.bodies[i].center_of_mass)  # fmt: skip
-        column += n
-    nz = column
-    # world velocities (CoM, rotation) of every body's frame per coordinate
-    jw = np.zeros((len(mb.bodies), 6, nz))
-    for i in range(len(mb.bodies)):
-        s = mb.cart_start[i]
-        jw[i, :3, :nv] = st.B[s : s + 3]
-        jw[i, 3:, :nv] = st.rotation[i] @ st.B[s + 3 : s + 6]
-    subtree = _subtrees(mb)
-    for f in flex.values():  # the elastic motion of a joint point carries the child's subtree
-        for joint in mb.joints:
-            if joint.parent != f.name:
-                continue
-            label = f"joint:{joint.name}"
-            d = f.frame.point_map(label) @ f.basis
-            at = f.position + f.rotation @ (f.frame.point(label)[1] - f.reference)
-            dt, dr = f.rotation @ d[:3], f.rotation @ d[3:]
-            for b in subtree[mb.body_names.index(joint.child)]:
-                jw[b, :3, f.columns] += dt - _hat(st.position[b] - at) @ dr
-                jw[b, 3:, f.columns] += dr
-    for i, f in flex.items():
-        to_body = np.kron(np.eye(2), f.rotation.T)
-        nodal = f.frame.rigid_modes(f.reference) @ to_body @ jw[i]
-        nodal[:, f.columns] += f.basis
-        f.nodal = nodal
-
-    def point(body: str | None, position: np.ndarray, label: str | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """World position and displacement Jacobian (3, n_z) of a point of a body (None: the ground)."""
-        if body is None:
-            return np.asarray(position, dtype=float), np.zeros((3, nz))
-        b = mb.body_names.index(body)
-        at = st.position[b] + st.rotation[b] @ (np.asarray(position, dtype=float) - mb.bodies[b].center_of_mass)
-        jac = jw[b, :3] - _hat(at - st.position[b]) @ jw[b, 3:]
-        if b in flex and label is not None:
-            f = flex[b]
-            jac = jac.copy()
-            jac[:, f.columns] += f.rotation @ (f.frame.point_map(label)[:3] @ f.basis)
-        return at, jac
-
-    # PTOs: transmissions (n_z,) and the direction their energy is split by
-    transmissions: list[tuple[JointPTO | ActuatorPTO, np.ndarray, str, np.ndarray]] = []
-    for pto in device.ptos:
-        if isinstance(pto, ActuatorPTO):
-            pa, ja = point(pto.body_a, pto.point_a, f"pto:{pto.name}")
-            pb, jb = point(pto.body_b, pto.point_b, f"pto:{pto.name}")
-            d = (pa - pb) / np.linalg.norm(pa - pb)
-            transmissions.append((pto, d @ (ja - jb), "line", d))
-        else:
-            g = np.zeros(nz)
-            g[:nv] = pto.stroke(mb, q, st)[1]
-            joint = mb.joint(pto.joint)
-            child = mb.body_names.index(joint.child)
-            axis = st.rotation[child] @ np.asarray(joint.axis, dtype=float)
-            transmissions.append((pto, g, joint.kind, axis))
-    # Cartesian world rows of every body (for hydrostatics, moorings and added mass)
-    jc = jw.reshape(-1, nz)
-
-    def outside_rigid(block: np.ndarray) -> np.ndarray:
-        out = block.copy()
-        out[:nv, :nv] = 0.0
-        return out
-
-    stiffness = np.zeros((nz, nz))
-    stiffness[:nv, :nv] = k_rr
-    mass = np.zeros((nz, nz))
-    damping = np.zeros((nz, nz))
-    damping[:nv, :nv] = np.diag(mb.joint_damping)
-    for i, body in enumerate(mb.bodies):
-        if i in flex:
-            f = flex[i]
-            assert f.nodal is not None
-            stiffness[f.columns, f.columns] += f.basis.T @ f.frame.stiffness @ f.basis
-            mass += f.nodal.T @ f.frame.mass @ f.nodal
-            damping[f.columns, f.columns] += f.damping
-        else:
-            mw = np.zeros((6, 6))
-            mw[:3, :3] = body.mass * np.eye(3)
-            mw[3:, 3:] = st.rotation[i] @ body.inertia @ st.rotation[i].T
-            mass += jw[i].T @ mw @ jw[i]
-    for pto, g, _, _ in transmissions:
-        stiffness += outside_rigid(pto.stiffness * np.outer(g, g))
-        if pto_damping:
-            damping += pto.damping * np.outer(g, g)
-    restoring = np.zeros((jc.shape[0], jc.shape[0]))
-    if coupling is not None:
-        restoring = coupling.restoring
-        stiffness += outside_rigid(jc.T @ restoring @ jc)
-        damping += jc.T @ coupling.mooring_damping @ jc
-        grid, added, radiation, a_inf = _hydro_matrices(coupling)
-        zero = np.zeros_like(a_inf)
-
-        def added_at(omega: float) -> np.ndarray:
-            return coupling.expand(_at(omega, grid, added, a_inf))
-
-        def radiation_at(omega: float) -> np.ndarray:
-            return coupling.expand(_at(omega, grid, radiation, zero))
-
-    else:
-
-        def added_at(omega: float) -> np.ndarray:
-            return np.zeros((jc.shape[0], jc.shape[0]))
-
-        radiation_at = added_at
-    stiffness = 0.5 * (stiffness + stiffness.T)
-    mass = 0.5 * (mass + mass.T)
-
-    def mass_at(omega: float) -> np.ndarray:
-        return mass + jc.T @ added_at(omega) @ jc
-
+    system = assemble(device, water=water, hydro=hydro, model=model, pto_damping=pto_damping)
+    mb, st, nv, nz, flex, jw = system.model, system.state, system.nv, system.nz, system.flexible, system.frames
+    stiffness, coupling, point = system.stiffness, system.coupling, system.point
+    mass_at = system.mass_at
     values, vectors = _eig(stiffness, mass_at(np.inf))
     tiny = 1e-8  # [rad^2/s^2]: a mode without stiffness (a mechanism, a free float), at round-off
     count = min(n_modes, nz)
@@ -429,12 +218,12 @@ def structural_modes(
     for pto in device.ptos:
         if isinstance(pto, ActuatorPTO):
             ends = []
-            for body, where in ((pto.body_a, pto.point_a), (pto.body_b, pto.point_b)):
-                at, jac = point(body, where, f"pto:{pto.name}")
-                owner = body or "ground"
-                ends.append(pts.add(f"{owner}:pto:{pto.name}", "attachment" if body else "ground", at, jac))
-                if body is not None:
-                    attached[body].append((f"pto:{pto.name}", where, f"pto:{pto.name}"))
+            for carrier, where in ((pto.body_a, pto.point_a), (pto.body_b, pto.point_b)):
+                at, jac = point(carrier, where, f"pto:{pto.name}")
+                owner = carrier or "ground"
+                ends.append(pts.add(f"{owner}:pto:{pto.name}", "attachment" if carrier else "ground", at, jac))
+                if carrier is not None:
+                    attached[carrier].append((f"pto:{pto.name}", where, f"pto:{pto.name}"))
             pts.join(ends[0], ends[1], "pto")
     for i, body in enumerate(mb.bodies):
         if i in flex:
@@ -469,9 +258,8 @@ def structural_modes(
         phi, omega = shapes[m], omegas[m]
         if omega**2 > tiny:
             mj = float(phi @ mass_at(omega) @ phi)
-            ratios[m] = float(phi @ (damping + jc.T @ radiation_at(omega) @ jc) @ phi) / (2 * mj * omega)
-        strain, kinetic = _energies(phi, flex, mb, jw, st.rotation, jc, restoring, added_at(omega), transmissions,
-                                    normal)  # fmt: skip
+            ratios[m] = float(phi @ system.damping_at(omega) @ phi) / (2 * mj * omega)
+        strain, kinetic = _energies(phi, system, system.added_mass(omega), normal)
         for k, energy in enumerate((strain, kinetic)):
             if energy.sum() > 0 and (k == 1 or omega**2 > tiny):  # a mode without stiffness has no strain energy
                 share[m, k] = energy / energy.sum()
@@ -534,19 +322,12 @@ def structural_modes(
 
 
 def _energies(
-    phi: np.ndarray,
-    flex: dict[int, _Flexible],
-    mb: Multibody,
-    jw: np.ndarray,
-    rotation: np.ndarray,
-    jc: np.ndarray,
-    restoring: np.ndarray,
-    added: np.ndarray,
-    transmissions: Sequence[tuple[JointPTO | ActuatorPTO, np.ndarray, str, np.ndarray]],
-    normal: np.ndarray,
+    phi: np.ndarray, system: DeviceSystem, added: np.ndarray, normal: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Strain and kinetic energy of a mode shape split into (in-plane, out-of-plane, torsion)."""
     strain, kinetic = np.zeros(3), np.zeros(3)
+    mb, jw, rotation, jc = system.model, system.frames, system.state.rotation, system.cartesian
+    flex = system.flexible
     for f in flex.values():
         assert f.nodal is not None
         u = f.nodal @ phi
@@ -581,9 +362,9 @@ def _energies(
         mw[3:, 3:] = rotation[i] @ body.inertia @ rotation[i].T
         kinetic[:2] += _split(jw[i] @ phi, mw, normal)
     x = jc @ phi
-    strain[:2] += _split(x, restoring, normal)
+    strain[:2] += _split(x, system.restoring, normal)
     kinetic[:2] += _split(x, added, normal)
-    for pto, g, kind, direction in transmissions:
+    for pto, g, kind, direction in system.transmissions:
         spring = 0.5 * pto.stiffness * float(g @ phi) ** 2
         w = float((direction @ normal) ** 2) if kind == "revolute" else _in_plane(direction, normal)
         strain[:2] += (w * spring, (1 - w) * spring)

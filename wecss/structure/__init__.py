@@ -9,6 +9,7 @@ from ._element import NODE_DOFS as NODE_DOFS
 from ._element import THEORIES as THEORIES
 from ._element import BeamElement as BeamElement
 from ._element import shape_functions as shape_functions
+from ._frame import COMPONENTS as COMPONENTS
 from ._frame import RIGID_LOADS as RIGID_LOADS
 from ._frame import Frame as Frame
 from ._frame import PointMass as PointMass

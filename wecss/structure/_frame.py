@@ -41,6 +41,9 @@ components [rad^2/s^2]. The loads of the body's own weight and d'Alembert inerti
 
 _PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
 
+COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
+"""Names of a node's six DOFs, in order: displacements and rotations along the body's x, y, z."""
+
 
 def hat(v: np.ndarray) -> np.ndarray:
     """The cross-product matrix of ``v`` (3,): hat(v) @ w = v x w."""
@@ -172,6 +175,28 @@ class Frame:
         if name not in self.points:
             raise KeyError(f"the frame has no point {name!r}; points: {sorted(self.points)}")
         return self.points[name]
+
+    def support(self, name: str, components: tuple[str, ...] = COMPONENTS) -> np.ndarray:
+        """The DOF indices that hold a named point in the given components (:data:`COMPONENTS`), for the ``fixed``
+        argument of ``static_response`` and ``natural_modes`` (a pin about y: all but ``"ry"``).
+
+        Raises
+        ------
+        ValueError
+            On an unknown component, or a partial support of a point off its node (hold all six there, or give the
+            point a node).
+        """
+        unknown = sorted(set(components) - set(COMPONENTS))
+        if unknown:
+            raise ValueError(f"support of {name!r}: unknown components {unknown}; accepted: {list(COMPONENTS)}")
+        node, position = self.point(name)
+        off = not np.allclose(position, self.nodes[node], rtol=0, atol=1e-12 * max(1.0, float(np.abs(position).max())))
+        if off and set(components) != set(COMPONENTS):
+            raise ValueError(
+                f"support of {name!r}: the point is {np.linalg.norm(position - self.nodes[node]):.3g} m off its node "
+                f"{node}; a partial support {list(components)} needs the point on a node (hold all six, or mesh it)"
+            )
+        return self.node_dofs(node)[[COMPONENTS.index(c) for c in components]]
 
     def point_map(self, name: str) -> np.ndarray:
         """(6, n_dof): the displacement and rotation of a named point from the DOFs."""
