@@ -18,6 +18,7 @@ from wecss.structure import (
     StressPoint,
     build_frame,
     craig_bampton,
+    natural_modes,
     static_response,
     stress_modes,
 )
@@ -166,3 +167,26 @@ def test_a_lumped_mass_and_a_given_clamp_are_read(notc):
     assert device.flexible_body("arm").invariants.mass == pytest.approx(300.0, rel=1e-6)
     with pytest.raises(ValueError, match="body 'floater' is not flexible"):
         device.structure("floater")
+
+
+def test_a_body_of_two_members_is_one_frame(notc):
+    """The arm as two members, A to C and C to D, 8 elements each: the frame of the one member with 16 (the same
+    nodes), its clamped frequencies to 1e-10, and the tip deflection of the pinned, held arm to 1e-9."""
+    spec = _spec_with(notc, bodies__1__flexible={"modes": 6, "elements": 8})
+    arm = spec["members"][0]
+    spots = [{**s, "at": 0.0} for s in arm["hot_spots"]]
+    spec["members"] = [
+        {**arm, "name": "arm_ac", "end": C.tolist(), "hot_spots": []},
+        {**arm, "name": "arm_cd", "start": C.tolist(), "hot_spots": spots},
+    ]
+    split, whole = Device.from_spec(spec).structure("arm"), notc.structure("arm")
+    assert sorted(split.members()) == ["arm_ac", "arm_cd"] and split.n_nodes == whole.n_nodes == 17
+    np.testing.assert_allclose(np.sort(split.nodes[:, 0]), np.sort(whole.nodes[:, 0]), atol=1e-12)
+    omegas = [natural_modes(f.stiffness, f.mass, fixed=f.support("clamp"), n_modes=8)[0] for f in (split, whole)]
+    np.testing.assert_allclose(omegas[0], omegas[1], rtol=1e-10)
+    fixed = [*split.support("clamp", ("ux", "uy", "uz", "rx", "rz")), *split.support("pto:cylinder", ("uz",))]
+    u = static_response(split.stiffness, split.point_load("joint:tip", [0.0, 0.0, 1e3]), fixed)
+    member = notc.member("arm")
+    ei = member.material.youngs_modulus * member.section.iy
+    tip = (split.point_map("joint:tip") @ u)[2]
+    assert tip == pytest.approx(1e3 * OVERHANG**2 * (B1 + OVERHANG) / (3 * ei), rel=1e-9)
