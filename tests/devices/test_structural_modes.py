@@ -47,6 +47,8 @@ def test_a_stiff_arm_swings_on_the_pto_spring_at_the_closed_form_frequency_in_ai
     assert float(ds.frequency[0]) < 1e-4
     assert float(ds.frequency[1]) == pytest.approx(np.sqrt(k_theta / j_a) / (2 * np.pi), rel=1e-8)  # 2.1e-9
     assert ds.energy_share.sel(mode=2, energy="strain", share="in_plane") == pytest.approx(1.0, abs=1e-12)
+    assert list(ds.dof_angular.values) == ["pivot__pitch", "tip__pitch"] and ds.sizes["dof_linear"] == 0
+    assert not [name for name, v in ds.data_vars.items() if " or " in v.attrs.get("units", "")]  # units apart
 
 
 def test_a_stiff_arm_in_water_has_the_rigid_devices_natural_periods(notc):

@@ -152,10 +152,11 @@ def structural_modes(
     Returns
     -------
     xarray.Dataset
-        ``frequency`` [Hz], ``damping_ratio``, ``converged``, ``energy_share`` (mode, energy, share), ``rigid_shape``
-        (mode, dof), the flexible bodies' nodes (``node_position``, ``node_body``, ``node_displacement``,
-        ``node_rotation``) and points and segments to draw (``point_position``, ``point_displacement``,
-        ``point_kind``, ``segment_points``, ``segment_kind``).
+        ``frequency`` [Hz], ``damping_ratio``, ``converged``, ``energy_share`` (mode, energy, share),
+        ``rigid_shape_linear`` (mode, dof_linear) and ``rigid_shape_angular`` (mode, dof_angular) (the joints'
+        coordinates, translations and rotations apart), the flexible bodies' nodes (``node_position``,
+        ``node_body``, ``node_displacement``, ``node_rotation``) and points and segments to draw
+        (``point_position``, ``point_displacement``, ``point_kind``, ``segment_points``, ``segment_kind``).
 
     Raises
     ------
@@ -276,6 +277,9 @@ def structural_modes(
         "of static loads on the elastic coordinates is left out"
     )  # fmt: skip
     mode = np.arange(1, count + 1)
+    names, kinds = mb.velocity_names, mb.velocity_kinds  # no generalised modes here (refused)
+    linear = [k for k in range(nv) if kinds[k] == "linear"]
+    angular = [k for k in range(nv) if kinds[k] == "angular"]
     data = {
         "frequency": (("mode",), omegas / (2 * np.pi), {"long_name": "natural frequency (undamped)", "units": "Hz"}),
         "damping_ratio": (("mode",), ratios, {"long_name": "modal damping ratio", "units": "1"}),
@@ -283,9 +287,12 @@ def structural_modes(
         "energy_share": (("mode", "energy", "share"), share,
                          {"long_name": "share of the mode's energy in in-plane motion, out-of-plane motion, torsion",
                           "units": "1"}),
-        "rigid_shape": (("mode", "dof"), shapes[:, :nv],
-                        {"long_name": "generalised coordinates of the mode shape (joint rates)",
-                         "units": "m or rad per unit largest translation (see dof)"}),
+        "rigid_shape_linear": (("mode", "dof_linear"), shapes[:, linear],
+                               {"long_name": "mode shape: translational generalised coordinates, per unit largest "
+                                "point translation", "units": "1"}),
+        "rigid_shape_angular": (("mode", "dof_angular"), shapes[:, angular],
+                                {"long_name": "mode shape: rotational generalised coordinates, per unit largest "
+                                 "point translation", "units": "rad/m"}),
         "node_position": (("node", "axis"), positions[nodes] if nodes.size else np.zeros((0, 3)),
                           {"long_name": "finite-element node position (world)", "units": "m"}),
         "node_body": (("node",), np.array(node_body, dtype=object), {"long_name": "flexible body of the node"}),
@@ -308,7 +315,8 @@ def structural_modes(
     ds = xr.Dataset(
         data,
         coords={
-            "mode": mode, "energy": list(ENERGIES), "share": list(SHARES), "dof": list(mb.velocity_names),
+            "mode": mode, "energy": list(ENERGIES), "share": list(SHARES),
+            "dof_linear": [names[k] for k in linear], "dof_angular": [names[k] for k in angular],
             "node": [pts.labels[k] for k in nodes], "point": pts.labels, "axis": ["x", "y", "z"],
         },
         attrs={
