@@ -135,3 +135,26 @@ def test_save_refuses_a_bad_compression_level(tmp_path) -> None:
     big = xr.Dataset({"a": ("x", np.zeros(2000))})
     assert storage_encoding(big, compress=False) == {}  # the bools of earlier callers: off, and level 6
     assert storage_encoding(big, compress=True) == {"a": {"zlib": True, "complevel": 6}}
+
+
+def test_modes_prints_the_table_and_plots_the_shapes(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    png = tmp_path / "arm.png"
+    assert main(["modes", "notc-10kw", "--air", "-n", "4", "--png", str(png)]) == 0
+    out = capsys.readouterr().out
+    assert "notc-10kw: structural modes in air (no gravity, no water); full model, 98 coordinates" in out
+    assert "strain energy in / out of plane / torsion [%]" in out
+    lines = [line.split() for line in out.splitlines() if line[:4].strip().isdigit()]
+    assert [line[0] for line in lines] == ["1", "2", "3", "4"]
+    assert float(lines[1][1]) == pytest.approx(0.6184, abs=1e-4)  # the arm on the PTO spring
+    assert lines[3][3:6] == ["0.0", "5.5", "94.5"]  # the torsion mode's strain energy
+    assert png.is_file() and f"wrote {png}" in out
+
+
+def test_modes_of_a_device_without_flexible_bodies_and_bad_input(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["modes", "m4-111", "--water", "--model", "reduced", "-n", "3"]) == 0
+    out = capsys.readouterr().out
+    assert "flexible bodies: none" in out and out.count("\n   ") >= 3
+    assert main(["modes", "m4-999"]) == 2
+    assert "no catalogue device 'm4-999'" in capsys.readouterr().err
+    assert main(["modes", "notc-10kw", "--air", "--png", "x.jpg"]) == 2
+    assert "must end in .png" in capsys.readouterr().err

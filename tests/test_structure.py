@@ -294,6 +294,7 @@ _SIX_HOMES = ("wecss/multibody/", "wecss/compiled/_plant.py")
 _SIX_ELSEWHERE = {
     "wecss/sim/_progress.py": "hours and minutes (// 60, % 60 ... no body)",
     "wecss/devices/_beam_modes.py": "the Euler-Bernoulli element matrix (6 h)",
+    "wecss/structure/_element.py": "the frame element's matrices and shape functions (6 L, 6 xi; no body)",
     "wecss/hydro/readers/_wamit_parse.py": "WAMIT's own mode numbering (6 per body plus NEWMDS)",
 }
 

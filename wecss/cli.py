@@ -8,6 +8,10 @@ periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic data
 JONSWAP sea) and writes the result and a PNG summary plot; ``--set sea.period=1.4`` overrides a scene value (dotted
 paths, validated by the scene). ``wecss plot RESULT.nc`` plots a result.
 
+``wecss modes DEVICE`` prints the natural modes of a device with its flexible bodies, in air and in water
+(``wecss.devices.structural_modes``): frequency, damping ratio and the in-plane / out-of-plane / torsion shares of
+each mode's strain and kinetic energy; ``--png FILE`` plots the mode shapes.
+
 ``wecss sweep SWEEP.toml -o FOLDER`` runs a sweep (``wecss.sweep``): in this process, in a pool of processes
 (``--processes N``), or on Dask (``--dask [--workers N]``, ``--scheduler tcp://...``); started again it resumes;
 ``--retry-failed`` runs the failed cases again.
@@ -94,6 +98,62 @@ def _modes(device: str) -> str:
         return format_modal_table(modal_table(compile_scene(scene)))
     except (SceneError, ValueError, FileNotFoundError) as err:
         return f"modal table: not available ({err})"
+
+
+def format_structural_modes(ds: Any) -> str:
+    """The table of a structural modal analysis (``wecss.devices.structural_modes``) as text."""
+    import numpy as np
+
+    medium = "in water" if ds.attrs["medium"] == "water" else "in air (no gravity, no water)"
+    lines = [
+        f"{ds.attrs['device']}: structural modes {medium}; {ds.attrs['model']} model, {ds.attrs['coordinates']} "
+        f"coordinates, flexible bodies: {ds.attrs['flexible_bodies']}",
+        f"{'mode':>4} {'f [Hz]':>10} {'zeta':>8}   strain energy in / out of plane / torsion [%]   kinetic [%]",
+    ]
+
+    def shares(values: Any) -> str:
+        return "     -" * 3 if np.any(np.isnan(values)) else "".join(f"{100 * v:6.1f}" for v in values)
+
+    for k in range(ds.sizes["mode"]):
+        mode = ds.isel(mode=k)
+        zeta = float(mode.damping_ratio)
+        lines.append(
+            f"{int(mode.mode):4d} {float(mode.frequency):10.4g} {'-' if np.isnan(zeta) else f'{zeta:.4f}':>8}   "
+            f"{shares(mode.energy_share.sel(energy='strain').values):>18}{'':28}"
+            f"{shares(mode.energy_share.sel(energy='kinetic').values)}"
+        )
+    return "\n".join(lines)
+
+
+def _structural_modes(args: argparse.Namespace) -> int:
+    from . import devices
+
+    target = args.device
+    device = devices.Device.from_spec(target) if target.endswith(".toml") else devices.load(target)
+    media = [m for m, wanted in (("air", not args.water), ("water", not args.air)) if wanted]
+    pictures: dict[str, Path] = {}
+    if args.png:
+        png = Path(args.png)
+        pictures = {m: png if len(media) == 1 else png.with_name(f"{png.stem}-{m}{png.suffix}") for m in media}
+        check_outputs({f"picture ({m})": (p, ".png") for m, p in pictures.items()}, inputs=[])
+    for medium in media:
+        try:
+            ds = device.structural_modes(water=medium == "water", model=args.model, n_modes=args.n)
+        except (ValueError, FileNotFoundError) as err:
+            if len(media) == 1:
+                raise
+            print(f"{device.name}: structural modes in {medium}: not available ({err})\n")
+            continue
+        print(format_structural_modes(ds))
+        print(f"notes: {ds.attrs['notes']}\n")
+        if medium in pictures:
+            import matplotlib.pyplot as plt
+
+            from .results import plot_structural_modes
+
+            plt.close(plot_structural_modes(ds, pictures[medium], modes=min(args.n, 6)))
+            print(f"wrote {pictures[medium]}\n")
+    return 0
 
 
 def _is_result(path: Path) -> bool:
@@ -318,6 +378,19 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--retry-failed", action="store_true", help="run the cases that failed before again")
     sweep.add_argument("-q", "--quiet", action="store_true", help="no progress line")
     _storage_options(sweep)
+    modes = sub.add_parser(
+        "modes", help="natural modes of a device with its flexible bodies, in air and in water (structural model)"
+    )
+    modes.add_argument("device", help="device name (wecss info lists them) or device spec (.toml)")
+    medium = modes.add_mutually_exclusive_group()
+    medium.add_argument("--air", action="store_true", help="in air only (no gravity, no water)")
+    medium.add_argument("--water", action="store_true", help="in water only (about the static equilibrium)")
+    modes.add_argument(
+        "--model", choices=["full", "reduced"], default="full",
+        help="flexible bodies: every finite-element DOF (default) or their reduced (Craig-Bampton) bases",
+    )  # fmt: skip
+    modes.add_argument("-n", type=int, default=10, metavar="N", help="number of modes (default 10)")
+    modes.add_argument("--png", help="plot the mode shapes (.png); with both media FILE-air.png and FILE-water.png")
     plot = sub.add_parser("plot", help="the summary plot of a result file (PNG)")
     plot.add_argument("result", help="result file (.nc)")
     plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")
@@ -348,6 +421,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _sweep(args)
         if args.command == "plot":
             return _plot(args.result, args.output)
+        if args.command == "modes":
+            return _structural_modes(args)
     except (ValueError, FileNotFoundError, ImportError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import xarray as xr
 from scipy.linalg import eig
 
 from ..constants import GRAVITY
@@ -25,9 +26,21 @@ from ..multibody import (
     Multibody,
     StaticModel,
 )
+from ..structure import Frame
+from ._flexible import (
+    BodyMass,
+    Flexible,
+    FlexibleBody,
+    body_frame,
+    body_points,
+    check_structural_mass,
+    flexible_body,
+    read_masses,
+)
 from ._members import Member, read_members
 from ._meshes import BodyMesh, read_meshes
 from ._spec import DeviceSpecError, build_model, build_moorings, build_viscous, hydro_source, read_spec
+from ._structural_modes import structural_modes
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..hydro.mesh import SurfaceMesh
@@ -63,6 +76,10 @@ class Device:
         (``wecss.devices._meshes``); :meth:`surface_mesh` builds one.
     hydro_options : mapping
         Keyword arguments of the reader of the ``hydro`` file (the spec's ``[hydro_options]``).
+    flexible : mapping of str to Flexible
+        The flexible bodies and their ``flexible`` tables (empty when every body is rigid).
+    masses : tuple of BodyMass
+        Lumped masses of the flexible bodies' structural models (the spec's ``[[masses]]``).
     """
 
     name: str
@@ -78,6 +95,8 @@ class Device:
     drag: tuple[BodyDrag, ...] = ()
     morison: tuple[MorisonElement, ...] = ()
     meshes: tuple[BodyMesh, ...] = ()
+    flexible: Mapping[str, Flexible] = field(default_factory=dict)
+    masses: tuple[BodyMass, ...] = ()
 
     @classmethod
     def from_spec(cls, source: str | Path | Mapping[str, Any]) -> Device:
@@ -107,9 +126,10 @@ class Device:
         options = spec.get("hydro_options", {})
         if not isinstance(options, Mapping):
             raise DeviceSpecError(f"device {spec['name']!r}: hydro_options must be a table; got {options!r}")
+        flexible, masses = _read_flexible(spec, model, ptos, members)
         return cls(
             spec["name"], spec.get("description", ""), model, ptos, hydro, assumptions, spec, members, moorings,
-            dict(options), drag, morison, meshes,
+            dict(options), drag, morison, meshes, flexible, masses,
         )  # fmt: skip
 
     def member(self, name: str) -> Member:
@@ -140,6 +160,44 @@ class Device:
             f"device {self.name!r} declares no mesh of body {body!r} ([[meshes]]); meshes: "
             f"{[m.body for m in self.meshes] or 'none'}"
         )
+
+    # --- structure ---------------------------------------------------------------------------------
+    def _flexible_spec(self, body: str) -> Flexible:
+        if body not in self.flexible:
+            known = sorted(self.flexible) or "none"
+            raise ValueError(
+                f"device {self.name!r}: body {body!r} is not flexible (flexible bodies: {known}); give it a "
+                "flexible = {...} table in the spec"
+            )
+        return self.flexible[body]
+
+    def structure(self, body: str) -> Frame:
+        """The frame of a flexible body's members and lumped masses with its named points (``clamp``,
+        ``joint:<name>``, ``pto:<name>``; see ``wecss.devices._flexible``).
+
+        Raises
+        ------
+        ValueError
+            If the body is not flexible.
+        """
+        return body_frame(self.model, self.ptos, self.members, self.masses, body, self._flexible_spec(body))
+
+    def flexible_body(self, body: str) -> FlexibleBody:
+        """The reduced model of a flexible body: Craig-Bampton basis with inertia-relief vectors, invariants about
+        its centre of mass, stress modes (see :class:`FlexibleBody`).
+
+        Raises
+        ------
+        ValueError
+            If the body is not flexible.
+        """
+        return flexible_body(self.model, self.ptos, self.members, self.masses, body, self._flexible_spec(body))
+
+    def structural_modes(self, **options: Any) -> xr.Dataset:
+        """Natural modes of the device with its flexible bodies, in water or in air:
+        :func:`wecss.devices.structural_modes` (its keywords: ``water``, ``hydro``, ``model``, ``n_modes``,
+        ``plane_normal``, ``pto_damping``, ``iterations``)."""
+        return structural_modes(self, **options)
 
     # --- hydrodynamics ----------------------------------------------------------------------------
     def hydro(self, source: str | Path | HydroData | None = None) -> HydroData:
@@ -260,6 +318,13 @@ class Device:
                 f"  {b.name:10s} mass {b.mass:10.4g} kg  centre of mass {np.round(b.center_of_mass, 4).tolist()} m  "
                 f"inertia diag {np.round(np.diag(b.inertia), 4).tolist()} kg m^2  hydro {b.hydro_body or '-'}"
             )
+            if b.name in self.flexible:
+                f = self.flexible[b.name]
+                on_body = [m.name for m in self.members if m.body == b.name]
+                lines.append(
+                    f"  {'':10s} flexible: members {', '.join(on_body)}; {f.elements} elements per member, {f.theory}, "
+                    f"{f.modes} fixed-interface modes, damping ratio {f.damping_ratio:g} (`wecss modes` for its modes)"
+                )
             if b.modes.n:
                 lines.append(
                     f"  {'':10s} generalised modes {', '.join(b.modes.names)}: mass diag "
@@ -305,6 +370,38 @@ class Device:
             lines.append("assumptions:")
             lines.extend(f"  {k}: {v}" for k, v in self.assumptions.items())
         return "\n".join(lines)
+
+
+def _read_flexible(
+    spec: Mapping[str, Any], model: Multibody, ptos: tuple[JointPTO | ActuatorPTO, ...], members: tuple[Member, ...]
+) -> tuple[dict[str, Flexible], tuple[BodyMass, ...]]:
+    """The spec's flexible tables and lumped masses, checked: members with materials, a clamp, the body's mass.
+
+    Raises
+    ------
+    DeviceSpecError
+        Naming the body, mass or member, the field, the value and what is accepted.
+    """
+    name = spec["name"]
+    flexible: dict[str, Flexible] = {}
+    for k, entry in enumerate(spec["bodies"]):
+        if "flexible" in entry:
+            where = f"device {name!r}, bodies[{k}] ({entry['name']!r})"
+            try:
+                flexible[entry["name"]] = Flexible.from_spec(where, entry["flexible"])
+            except ValueError as err:
+                raise DeviceSpecError(str(err)) from None
+    entries = spec.get("masses", [])
+    if not isinstance(entries, list):
+        raise DeviceSpecError(f"device {name!r}: masses must be a list of tables ([[masses]])")
+    try:
+        masses = read_masses(name, entries, list(flexible))
+        for body, table in flexible.items():
+            body_points(model, ptos, body, table)
+            check_structural_mass(model, members, masses, body)
+    except ValueError as err:
+        raise DeviceSpecError(f"device {name!r}: {err}") from None
+    return flexible, masses
 
 
 __all__ = ["Device", "DeviceSpecError"]

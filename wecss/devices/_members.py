@@ -23,96 +23,12 @@ from typing import Any
 
 import numpy as np
 
-_SECTION_KEYS = {
-    "tube": {"kind", "outer_diameter", "thickness"},
-    "box": {"kind", "width", "height", "thickness"},
-    "given": {"kind", "area", "iy", "iz", "wy", "wz", "wt"},
-}
-_MEMBER_KEYS = {"name", "body", "start", "end", "section", "hot_spots", "body_mass"}
+from ..structure import Material, Section, member_axes, von_mises
+
+_MEMBER_KEYS = {"name", "body", "start", "end", "section", "hot_spots", "body_mass", "material", "nonstructural_mass"}
+_OPTIONAL_KEYS = {"hot_spots", "body_mass", "material", "nonstructural_mass"}
 _BODY_MASS = ("centre", "along")
 _HOT_SPOT_KEYS = {"name", "at", "y", "z", "scf"}
-
-
-def _positive(where: str, **values: float) -> None:
-    for key, value in values.items():
-        if not (isinstance(value, int | float) and np.isfinite(value) and value > 0):
-            raise ValueError(f"{where}: {key} must be a positive number, got {value!r}")
-
-
-@dataclass(frozen=True)
-class Section:
-    """Cross-section properties of a beam.
-
-    Attributes
-    ----------
-    kind : str
-        ``"tube"``, ``"box"`` or ``"given"``.
-    area : float
-        A [m^2].
-    iy, iz : float
-        Second moments of area about the local y and z axes [m^4].
-    y_max, z_max : float
-        Distance of the extreme fibre from the centroid along y and z [m].
-    wt : float
-        Torsional section modulus, tau = T / W_t at the wall [m^3].
-    """
-
-    kind: str
-    area: float
-    iy: float
-    iz: float
-    y_max: float
-    z_max: float
-    wt: float
-
-    @classmethod
-    def tube(cls, outer_diameter: float, thickness: float) -> Section:
-        """Circular tube: outer diameter D and wall thickness t [m] (exact A and I; W_t = 2 J / D)."""
-        _positive("tube section", outer_diameter=outer_diameter, thickness=thickness)
-        if 2 * thickness > outer_diameter:
-            raise ValueError(f"tube section: thickness {thickness} m exceeds the radius {outer_diameter / 2} m")
-        d_in = outer_diameter - 2 * thickness
-        area = np.pi / 4 * (outer_diameter**2 - d_in**2)
-        inertia = np.pi / 64 * (outer_diameter**4 - d_in**4)
-        r = outer_diameter / 2
-        return cls("tube", float(area), float(inertia), float(inertia), r, r, float(2 * inertia / r))
-
-    @classmethod
-    def box(cls, width: float, height: float, thickness: float) -> Section:
-        """Rectangular hollow section: width along y, height along z, uniform wall t [m] (exact A and I;
-        Bredt's W_t = 2 A_m t with A_m the area inside the wall's mid-line)."""
-        _positive("box section", width=width, height=height, thickness=thickness)
-        if 2 * thickness >= min(width, height):
-            raise ValueError(f"box section: wall {thickness} m too thick for {width} x {height} m")
-        wi, hi = width - 2 * thickness, height - 2 * thickness
-        area = width * height - wi * hi
-        iy = (width * height**3 - wi * hi**3) / 12  # about y: bending in z
-        iz = (height * width**3 - hi * wi**3) / 12
-        mid_area = (width - thickness) * (height - thickness)
-        return cls("box", area, iy, iz, width / 2, height / 2, 2 * mid_area * thickness)
-
-    @classmethod
-    def given(cls, area: float, iy: float, iz: float, wy: float, wz: float, wt: float) -> Section:
-        """Given properties: A [m^2], Iy, Iz [m^4], elastic moduli Wy = Iy / z_max, Wz = Iz / y_max [m^3] and the
-        torsional modulus W_t [m^3]."""
-        _positive("given section", area=area, iy=iy, iz=iz, wy=wy, wz=wz, wt=wt)
-        return cls("given", area, iy, iz, iz / wz, iy / wy, wt)
-
-    @classmethod
-    def from_spec(cls, where: str, entry: Mapping[str, Any]) -> Section:
-        """From a spec table ``{kind = "tube", outer_diameter = ..., thickness = ...}`` (or box, given)."""
-        kind = entry.get("kind")
-        if kind not in _SECTION_KEYS:
-            raise ValueError(f"{where}: section kind {kind!r}; accepted: {sorted(_SECTION_KEYS)}")
-        keys = _SECTION_KEYS[kind]
-        if set(entry) != keys:
-            raise ValueError(f"{where}: a {kind} section takes exactly {sorted(keys)}, got {sorted(entry)}")
-        args = {k: float(v) for k, v in entry.items() if k != "kind"}
-        if kind == "tube":
-            return cls.tube(**args)
-        if kind == "box":
-            return cls.box(**args)
-        return cls.given(**args)
 
 
 @dataclass(frozen=True)
@@ -151,6 +67,11 @@ class Member:
     """Where the body's own weight and inertia act for the member's free body: ``"centre"`` (one load at the body's
     centre of mass) or ``"along"`` (the body's mass spread uniformly along the member: for a body that is this
     beam); see :mod:`wecss.sim` (the ``loads`` group's section loads)."""
+    material: Material | None = None
+    """The member's material (``wecss.structure.Material``): needed when its body is flexible; None otherwise."""
+    nonstructural_mass: float = 0.0
+    """Mass per length carried on the member's axis beyond density times area (fittings, lugs, ballast) [kg/m]; it
+    counts only in a flexible body's structural model."""
 
     @property
     def length(self) -> float:
@@ -160,11 +81,7 @@ class Member:
     @property
     def axes(self) -> np.ndarray:
         """Rows x, y, z of the local axes in the body's (reference world) axes [-]."""
-        x = (self.end - self.start) / self.length
-        ref = np.array([0.0, 0.0, 1.0]) if abs(x[2]) < 0.999 else np.array([1.0, 0.0, 0.0])
-        z = ref - (ref @ x) * x
-        z /= np.linalg.norm(z)
-        return np.array([x, np.cross(z, x), z])
+        return member_axes(self.start, self.end)
 
     def internal_wrench(
         self, station: float, points: np.ndarray, forces: np.ndarray, moments: np.ndarray
@@ -229,8 +146,8 @@ class Member:
         """
         parts = self.stress_components(spot, np.asarray(wrench, dtype=float))
         sigma, tau = parts["normal"], parts["shear"]
-        vm = np.sqrt(sigma**2 + 3 * tau**2)
-        return {"normal": sigma, "shear": tau, "von_mises": vm, "signed_von_mises": np.where(sigma < 0, -vm, vm)}
+        vm, signed = von_mises(sigma, tau)
+        return {"normal": sigma, "shear": tau, "von_mises": vm, "signed_von_mises": signed}
 
 
 def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list[str]) -> tuple[Member, ...]:
@@ -245,7 +162,7 @@ def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list
     for k, entry in enumerate(entries):
         where = f"device {device!r}, members[{k}]"
         unknown = sorted(set(entry) - _MEMBER_KEYS)
-        missing = sorted(_MEMBER_KEYS - {"hot_spots", "body_mass"} - set(entry))
+        missing = sorted(_MEMBER_KEYS - _OPTIONAL_KEYS - set(entry))
         if unknown or missing:
             raise ValueError(
                 f"{where}: unknown keys {unknown}, missing keys {missing}; accepted: {sorted(_MEMBER_KEYS)}"
@@ -259,6 +176,10 @@ def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list
         body_mass = entry.get("body_mass", "centre")
         if body_mass not in _BODY_MASS:
             raise ValueError(f"{where}: body_mass {body_mass!r}; accepted: {list(_BODY_MASS)}")
+        material = None if "material" not in entry else Material.from_spec(f"{where}.material", entry["material"])
+        extra = entry.get("nonstructural_mass", 0.0)
+        if isinstance(extra, bool) or not isinstance(extra, int | float) or not (np.isfinite(extra) and extra >= 0):
+            raise ValueError(f"{where}: nonstructural_mass must be a number >= 0 [kg/m]; got {extra!r}")
         length = float(np.linalg.norm(end - start))
         spots = []
         for j, spot in enumerate(entry.get("hot_spots", [])):
@@ -280,7 +201,19 @@ def read_members(device: str, entries: list[Mapping[str, Any]], body_names: list
             if not hs.scf > 0:
                 raise ValueError(f"{w}: scf must be positive, got {hs.scf}")
             spots.append(hs)
-        out.append(Member(str(entry["name"]), str(entry["body"]), start, end, section, tuple(spots), body_mass))
+        out.append(
+            Member(
+                str(entry["name"]),
+                str(entry["body"]),
+                start,
+                end,
+                section,
+                tuple(spots),
+                body_mass,
+                material,
+                float(extra),
+            )
+        )
     names = [m.name for m in out]
     if len(set(names)) != len(names):
         raise ValueError(f"device {device!r}: member names repeat: {names}")

@@ -17,7 +17,12 @@ Spec layout (TOML; the same keys as a dict)::
                                 # (<body>__<name>, dimensionless; the database's DOF <hydro_body>__<name> acts on
                                 # it), as a list [{name = "flex1", mass [kg m^2], stiffness [N m], damping
                                 # [N m s]}] or a table {names = [...], mass, stiffness, damping} of matrices or
-                                # diagonals (wecss.multibody.GeneralisedModes)
+                                # diagonals (wecss.multibody.GeneralisedModes);
+                                # flexible (optional): the body's members are its structural model, reduced for the
+                                # floating frame (wecss.devices.Flexible): {modes = 6 (fixed-interface normal
+                                # modes), damping_ratio = 0.0, elements = 8 (per member), theory = "euler-bernoulli" |
+                                # "timoshenko", clamp = [x, y, z] (default: the parent joint's point),
+                                # inertia_relief = true, centrifugal = false}
     [[joints]]                  # name, kind, child, parent (omit for the base), axis, point [m], label,
                                 # damping (the joint's own viscous loss, revolute/prismatic [N m s/rad, N s/m])
     ...
@@ -26,9 +31,14 @@ Spec layout (TOML; the same keys as a dict)::
                                 # end_stop_stiffness, end_stop_damping (an end stop beyond the stroke limit)
     [[members]]                 # beam members for stress recovery (optional): name, body, start, end [m] (world,
     ...                         # reference configuration), section = {kind = "tube", outer_diameter, thickness} |
-                                # {kind = "box", width, height, thickness} | {kind = "given", area, iy, iz, wy, wz, wt},
+                                # {kind = "box", width, height, thickness} | {kind = "given", area, iy, iz, wy, wz, wt,
+                                # and optionally torsion_constant [m^4], shear_area_y, shear_area_z [m^2]},
                                 # hot_spots = [{name, at [m from start], y, z [m on the section], scf}],
-                                # body_mass = "centre" (default) | "along" (the body's mass spread along the member)
+                                # body_mass = "centre" (default) | "along" (the body's mass spread along the member),
+                                # material = "S355" | {E [Pa], G [Pa] or nu, density [kg/m^3]} (needed on a flexible
+                                # body), nonstructural_mass [kg/m] (mass on the axis beyond density x area)
+    [[masses]]                  # lumped masses of a flexible body's structural model (optional): name, body, point
+    ...                         # [m] (its centre), mass [kg], inertia [kg m^2] about its centre (3 or 3x3)
     [[moorings]]                # a linear mooring (optional): body, stiffness = {Surge = k, ...} [N/m, N m/rad],
     ...                         # damping = {Surge = c, ...} [N s/m, N m s/rad], about the body's centre of mass
                                 # (world axes), slack in the reference configuration (wecss.multibody.Mooring)
@@ -51,9 +61,9 @@ from ..multibody import ActuatorPTO, Body, BodyDrag, Joint, JointPTO, Mooring, M
 
 _TOP_KEYS = {
     "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
-    "drag", "morison", "meshes",
+    "drag", "morison", "meshes", "masses",
 }  # fmt: skip
-_BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body", "modes"}
+_BODY_KEYS = {"name", "mass", "inertia", "center_of_mass", "hydro_body", "modes", "flexible"}
 _JOINT_KEYS = {"name", "kind", "child", "parent", "axis", "point", "label", "damping"}
 _LIMIT_KEYS = {"force_limit", "stroke_limit", "end_stop_stiffness", "end_stop_damping"}
 _JOINT_PTO_KEYS = {"name", "kind", "joint", "damping", "stiffness", "rest", *_LIMIT_KEYS}
@@ -144,7 +154,7 @@ def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | Ac
         where = f"device {name!r}, bodies[{k}]"
         _check_keys(where, entry, _BODY_KEYS, {"name", "mass", "inertia", "center_of_mass"})
         try:
-            bodies.append(Body(**entry))
+            bodies.append(Body(**{k: v for k, v in entry.items() if k != "flexible"}))
         except (TypeError, ValueError) as err:
             raise DeviceSpecError(f"{where}: {err}") from None
     joints = []

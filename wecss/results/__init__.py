@@ -19,6 +19,7 @@ from ._metrics import response_amplitude as response_amplitude
 from ._metrics import rms_hinge_angle as rms_hinge_angle
 from ._metrics import spectral_moments as spectral_moments
 from ._metrics import wecccomp_score as wecccomp_score
+from ._mode_plot import plot_structural_modes as plot_structural_modes
 from ._plot import plot_power_curve as plot_power_curve
 from ._plot import plot_rao as plot_rao
 from ._plot import plot_timeseries as plot_timeseries

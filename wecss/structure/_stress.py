@@ -1,0 +1,204 @@
+"""Stress modes: the section loads and the stresses at points of the members' sections per modal coordinate, so that
+a stress field is one matrix product with the modal coordinates.
+
+Section load at a station of a member (the convention of ``wecss.devices.Member.internal_wrench``): the resultant,
+about the section's centre and in the member's local axes, of the loads on the part beyond the cut (towards the
+member's end): N (tension positive), Vy, Vz [N], T, My, Mz [N m]. In the finite-element model this is the force the
+nodes exert on the element that starts at the station, with its sign changed: W = -(K_e u_e + M_e a_e - f_e) at
+the element's first node, with u_e its elastic displacements, a_e their accelerations and f_e the element's own
+loads in the body's rigid-body motion (weight and d'Alembert inertia, linear in the coordinates
+``wecss.structure.RIGID_LOADS``). That is exact for the finite-element solution (element by element equilibrium),
+whatever the mesh, so a cut at a node gives the free-body cut's value. At a member's end (no element starts there)
+it is the force the last element carries into its end node, the point loads at that node included. Coriolis loads
+of the elastic velocities (2 w x u_dot) are left out.
+
+Stresses at a point (y, z) of the section, times the point's stress concentration factor: the normal stress
+sigma = N / A + My z / Iy - Mz y / Iz and the torsional shear tau = T / W_t (the thin-walled value at the wall; the
+shear of Vy and Vz, zero at the extreme fibres, is left out); von Mises sqrt(sigma^2 + 3 tau^2) and the signed von
+Mises stress with the sign of sigma, the principal stress of largest magnitude in this plane stress state (paper
+003, Eq. 53).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._frame import Frame, group_rigid_loads
+
+
+@dataclass(frozen=True)
+class StressPoint:
+    """A point where stresses are recovered: ``member``, ``station`` (from the member's start, at a node) [m], ``y``,
+    ``z`` on the section [m], ``scf`` the stress concentration factor [-] and a ``name``."""
+
+    member: str
+    station: float
+    y: float
+    z: float
+    scf: float = 1.0
+    name: str = ""
+
+
+def von_mises(normal: np.ndarray, shear: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Von Mises stress sqrt(sigma^2 + 3 tau^2) and the signed von Mises stress (the sign of sigma, + at 0) [Pa]."""
+    vm = np.sqrt(np.asarray(normal) ** 2 + 3 * np.asarray(shear) ** 2)
+    return vm, np.where(np.asarray(normal) < 0, -vm, vm)
+
+
+@dataclass(frozen=True, eq=False)
+class StressModes:
+    """Section loads and stresses per modal coordinate (see the module docstring).
+
+    Attributes
+    ----------
+    stations : tuple of (member, station)
+        The cuts [m from the member's start].
+    points : tuple of StressPoint
+    section, section_acceleration : ndarray (n_station, 6, n)
+        Section loads per modal coordinate and per modal acceleration [N, N m per 1; per 1/s^2].
+    section_rigid : ndarray (n_station, 6, 12)
+        Section loads per rigid-motion load coordinate (``RIGID_LOADS``) [N, N m per m/s^2 ...].
+    normal, shear : ndarray (n_point, n)
+        sigma and tau per modal coordinate [Pa per 1], SCF applied.
+    normal_acceleration, shear_acceleration : ndarray (n_point, n)
+    normal_rigid, shear_rigid : ndarray (n_point, 12)
+    """
+
+    stations: tuple[tuple[str, float], ...]
+    points: tuple[StressPoint, ...]
+    section: np.ndarray
+    section_acceleration: np.ndarray
+    section_rigid: np.ndarray
+    normal: np.ndarray
+    shear: np.ndarray
+    normal_acceleration: np.ndarray
+    shear_acceleration: np.ndarray
+    normal_rigid: np.ndarray
+    shear_rigid: np.ndarray
+
+    def section_loads(
+        self, q: np.ndarray, q_ddot: np.ndarray | None = None, rigid: np.ndarray | None = None
+    ) -> np.ndarray:
+        """Section loads (..., n_station, 6) from modal coordinates q (..., n), their accelerations and the
+        rigid-motion load coordinates (..., 12) (each optional but q)."""
+        out = np.einsum("sjn,...n->...sj", self.section, q)
+        if q_ddot is not None:
+            out = out + np.einsum("sjn,...n->...sj", self.section_acceleration, q_ddot)
+        if rigid is not None:
+            out = out + np.einsum("sjr,...r->...sj", self.section_rigid, rigid)
+        return out
+
+    def stresses(
+        self, q: np.ndarray, q_ddot: np.ndarray | None = None, rigid: np.ndarray | None = None
+    ) -> dict[str, np.ndarray]:
+        """``normal``, ``shear``, ``von_mises`` and ``signed_von_mises`` (..., n_point) [Pa] at the points."""
+        normal = np.einsum("pn,...n->...p", self.normal, q)
+        shear = np.einsum("pn,...n->...p", self.shear, q)
+        if q_ddot is not None:
+            normal = normal + np.einsum("pn,...n->...p", self.normal_acceleration, q_ddot)
+            shear = shear + np.einsum("pn,...n->...p", self.shear_acceleration, q_ddot)
+        if rigid is not None:
+            normal = normal + np.einsum("pr,...r->...p", self.normal_rigid, rigid)
+            shear = shear + np.einsum("pr,...r->...p", self.shear_rigid, rigid)
+        vm, signed = von_mises(normal, shear)
+        return {"normal": normal, "shear": shear, "von_mises": vm, "signed_von_mises": signed}
+
+
+def default_points(frame: Frame) -> tuple[StressPoint, ...]:
+    """Every node of every member with its section's default fibres (``Section.fibres``), SCF 1."""
+    out = []
+    for member, elements in frame.members().items():
+        stations = [e.station for e in elements] + [elements[-1].station + elements[-1].length]
+        for s in stations:
+            for k, (y, z) in enumerate(elements[0].section.fibres):
+                out.append(StressPoint(member, float(s), y, z, 1.0, f"fibre{k}"))
+    return tuple(out)
+
+
+def stress_modes(
+    frame: Frame,
+    basis: np.ndarray,
+    points: Sequence[StressPoint] | None = None,
+    origin: np.ndarray | None = None,
+) -> StressModes:
+    """Stress modes of ``frame`` for the mode fields ``basis`` (n_dof, n) at ``points`` (default
+    :func:`default_points`); the rigid-motion loads about ``origin`` [m] (default: the frame's centre of mass, the
+    body frame's origin).
+
+    Raises
+    ------
+    ValueError
+        On a point of an unknown member or at a station that is not a node of its member.
+    """
+    phi = np.asarray(basis, dtype=float)
+    pts = default_points(frame) if points is None else tuple(points)
+    members = frame.members()
+    groups = frame.mass_points
+    if origin is None:
+        total = sum(float(g.masses.sum()) for g in groups)
+        origin = sum((g.masses @ g.positions for g in groups), np.zeros(3)) / total
+    index = {id(e): k for k, e in enumerate(frame.elements)}
+    stations: list[tuple[str, float]] = []
+    rows_u, rows_a, rows_r = [], [], []
+    where: dict[tuple[str, float], int] = {}
+    for p in pts:
+        if p.member not in members:
+            raise ValueError(f"stress point {p.name!r}: member {p.member!r} is not in the frame: {sorted(members)}")
+        elements = members[p.member]
+        length = elements[-1].station + elements[-1].length
+        tol = 1e-9 * max(1.0, length)
+        ends = [e.station for e in elements] + [length]
+        match = [k for k, s in enumerate(ends) if abs(s - p.station) <= tol]
+        if not match:
+            raise ValueError(
+                f"stress point {p.name!r}: station {p.station} m of member {p.member!r} is not a node (nodes at "
+                f"{np.round(ends, 6).tolist()} m); add it to the member's stations"
+            )
+        key = (p.member, ends[match[0]])
+        if key in where:
+            continue
+        where[key] = len(stations)
+        stations.append(key)
+        k = match[0]
+        last = k == len(elements)
+        e = elements[k - 1] if last else elements[k]
+        dofs = frame.element_dofs(e)
+        t = e.transform
+        loads = group_rigid_loads(groups[index[id(e)]], origin)
+        part, sign = (slice(6, 12), 1.0) if last else (slice(0, 6), -1.0)
+        ku = np.zeros((6, frame.n_dof))
+        ma = np.zeros((6, frame.n_dof))
+        ku[:, dofs] = sign * (e.local_stiffness @ t)[part]
+        ma[:, dofs] = sign * (e.local_mass @ t)[part]
+        rows_u.append(ku @ phi)
+        rows_a.append(ma @ phi)
+        rows_r.append(-sign * (t @ loads)[part])
+    section = np.array(rows_u).reshape(len(stations), 6, phi.shape[1])
+    section_a = np.array(rows_a).reshape(len(stations), 6, phi.shape[1])
+    section_r = np.array(rows_r).reshape(len(stations), 6, 12)
+    normal_rows, shear_rows = [], []
+    for p in pts:
+        s = members[p.member][0].section
+        normal_rows.append(p.scf * np.array([1 / s.area, 0.0, 0.0, 0.0, p.z / s.iy, -p.y / s.iz]))
+        shear_rows.append(p.scf * np.array([0.0, 0.0, 0.0, 1 / s.wt, 0.0, 0.0]))
+    at = [where[(p.member, _snap(p, members))] for p in pts]
+    a_n, a_t = np.array(normal_rows).reshape(-1, 6), np.array(shear_rows).reshape(-1, 6)
+    sec_at = section[at] if at else np.zeros((0, 6, phi.shape[1]))
+    sec_a_at = section_a[at] if at else np.zeros((0, 6, phi.shape[1]))
+    sec_r_at = section_r[at] if at else np.zeros((0, 6, 12))
+    return StressModes(
+        tuple(stations), pts, section, section_a, section_r,
+        np.einsum("pj,pjn->pn", a_n, sec_at), np.einsum("pj,pjn->pn", a_t, sec_at),
+        np.einsum("pj,pjn->pn", a_n, sec_a_at), np.einsum("pj,pjn->pn", a_t, sec_a_at),
+        np.einsum("pj,pjr->pr", a_n, sec_r_at), np.einsum("pj,pjr->pr", a_t, sec_r_at),
+    )  # fmt: skip
+
+
+def _snap(point: StressPoint, members: dict) -> float:
+    """The node station of the member that ``point`` lies at (checked before)."""
+    elements = members[point.member]
+    ends = [e.station for e in elements] + [elements[-1].station + elements[-1].length]
+    return ends[int(np.argmin([abs(s - point.station) for s in ends]))]
