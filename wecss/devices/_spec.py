@@ -48,6 +48,9 @@ Spec layout (TOML; the same keys as a dict)::
                                 # = {Heave = b} [N s/m, N m s/rad] (wecss.multibody.BodyDrag)
     [[morison]]                 # a Morison cylinder (optional; with hydrodynamics.drag): body, start, end [m] (world,
     ...                         # reference configuration), diameter [m], cd, ca (default 1), segments (default 10)
+    [[meshes]]                  # a body's surface mesh (optional; for the scene's body-exact hydrodynamics): body,
+    ...                         # stl (path), position, scale, open_above; or geometry (a BEM geometry file) and
+                                # freeboard [m], panel_size, sectors (wecss.devices._meshes)
 """
 
 from __future__ import annotations
