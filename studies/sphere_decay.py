@@ -137,7 +137,7 @@ def regular(spec: Path, period: float, steepness: float, damping: float, hydrody
             "radiation": {"method": "convolution"},
             "hydrodynamics": hydrodynamics,
             "controller": {"name": "damping", "parameters": {"damping": damping}},
-            "outputs": {"variables": ["motion", "pto"], "window": 10.0 / cycles},
+            "outputs": {"variables": ["motion", "pto"], "window": min(1.0, 10.0 / cycles)},
         }
     )  # fmt: skip
     run = simulate(scene)
@@ -161,7 +161,7 @@ def main(argv: list[str] | None = None) -> int:
         for release in releases:
             row = [release]
             for hyd in ({}, {"hydrostatics": "body-exact"}):
-                x, dt = decay(spec, release, hyd, 1.0 if args.quick else 4.0)
+                x, dt = decay(spec, release, hyd, 2.5 if args.quick else 4.0)
                 row += list(decay_summary(x, dt))
             decays.append(row)
             print("decay", " ".join(f"{v:.4g}" for v in row), flush=True)
@@ -173,7 +173,7 @@ def main(argv: list[str] | None = None) -> int:
                 row = [steepness, period]
                 for damping in (0.0, c):
                     for hyd in ({}, BODY_EXACT):
-                        row += list(regular(spec, period, steepness, damping, hyd, 8.0 if args.quick else 40.0))
+                        row += list(regular(spec, period, steepness, damping, hyd, 12.0 if args.quick else 40.0))
                 waves.append(row)
                 print("wave", " ".join(f"{v:.4g}" for v in row), flush=True)
         if args.quick:
