@@ -43,6 +43,9 @@ MAX_ITERATIONS: int = 80
 """Most active-set iterations."""
 
 PDAS_ITERATIONS: int = 40
+
+CONIC_ENTRIES: float = 2e7
+"""Largest dense problem (signals x samples x coefficients) the interior-point fallback takes on."""
 """Primal-dual active-set iterations before the monotone fallback."""
 
 
@@ -383,6 +386,13 @@ class SpectralProgramme:
 
         periodic = self.periodic
         m, n_pto = periodic.n_harmonics, periodic.n_pto
+        entries = len(self.signals) * periodic.points * n_pto * 2 * m * n_pto
+        if entries > CONIC_ENTRIES:
+            raise RuntimeError(
+                f"the interior-point solve would hold {entries:.3g} matrix entries (more than {CONIC_ENTRIES:.3g}): "
+                f"{m} harmonics x {n_pto} PTOs on {periodic.points} samples; narrow the force basis (basis, "
+                "harmonics) or drop wave components that carry no energy"
+            )
         factor = np.linalg.cholesky(self.hessian)  # H = L L^H
         k = np.conj(np.swapaxes(factor, 1, 2))  # L^H
         blocks = [np.block([[b.real, -b.imag], [b.imag, b.real]]) for b in k]
