@@ -260,10 +260,19 @@ def noncausal_optimum(
         The force basis (its highest harmonic M, or ``basis`` times the waves' highest; its lowest, by default the
         waves'), the samples N and the frequency response ("database" or "fit"): see ``periodic_response``.
 
+    Returns
+    -------
+    NonCausalOptimum
+        The optimum [W], its certified upper bound and duality gap [W], the trajectory at the samples and the
+        force's amplitudes (``.dataset()`` for an xarray Dataset).
+
     Raises
     ------
     ValueError
         On bad settings (see ``periodic_response``), an objective without its efficiency or copper loss.
+    RuntimeError
+        If neither the active-set iteration nor the interior-point solve (for a programme small enough to hold
+        densely) finds the optimum.
     """
     start = _time.perf_counter()
     if objective not in OBJECTIVES:

@@ -22,6 +22,10 @@ by one inverse FFT per signal. The active set is found by the primal-dual active
 and Kunisch 2002: rows whose multiplier stays positive, plus rows violated, until the set repeats), with a
 monotone fallback (add the violated rows, drop the negative multipliers) if it cycles.
 
+Where that iteration does not settle (it can cycle when several limits bind together), :meth:`SpectralProgramme.
+solve_robust` solves the same programme by an interior-point method instead (cvxpy with Clarabel, in the real and
+imaginary parts of the F_m, the signals as dense matrices: for programmes of up to CONIC_ENTRIES entries).
+
 Certificate: for any y >= 0 on the constraints the dual value D(y) bounds the programme's minimum from below, and the
 primal value at F(y) from above when F(y) is feasible; the solution reports both, their gap (the sum of the
 active rows' slack times multiplier, and the penalties' stationarity residual) and the largest violation.
