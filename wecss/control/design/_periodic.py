@@ -140,7 +140,7 @@ def periodic_response(
 
     omega = np.atleast_1d(np.asarray(omega, dtype=float))
     coefficients = np.asarray(coefficients, dtype=complex)
-    if not (period > 0 and np.isfinite(period)):
+    if not (isinstance(period, int | float | np.integer | np.floating) and period > 0 and np.isfinite(period)):
         raise ValueError(f"period must be positive and finite [s]; got {period!r}")
     if response not in RESPONSES:
         raise ValueError(f"response must be one of {RESPONSES}; got {response!r}")
