@@ -202,6 +202,8 @@ def test_bad_inputs_say_what_was_received():
         noncausal_optimum(model, omega, amplitude, PERIOD, force_limit=-1.0)
     with pytest.raises(ValueError, match="whole multiples"):
         noncausal_optimum(model, omega, amplitude, 41.0)
+    with pytest.raises(ValueError, match="period must be positive and finite"):
+        noncausal_optimum(model, omega, amplitude, "10 Tp")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="harmonics must be a whole number"):
         noncausal_optimum(model, omega, amplitude, PERIOD, harmonics=10)
     with pytest.raises(ValueError, match="points must exceed"):
