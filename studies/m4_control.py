@@ -6,7 +6,9 @@ paper's damping) with an end stop of 100 N m/rad beyond it; there is no torque l
 soft constraint; the other controllers meet the end stops.
 
 Reports per run the mean absorbed power per PTO and in total, the capture width ratio, the RMS hinge angle, the
-share of the complex-conjugate bound of the same wave components and the time spent past the stroke limit;
+share of the complex-conjugate bound of the same wave components and of the constrained non-causal optimum (within
+the hinges' stroke limits, on the linear model and the run's periodic record) and the time spent past the stroke
+limit;
 writes the table into ``docs/control.md`` (section "M4 134 with four PTOs") and the plot of total power against
 Tp per controller into ``docs/m4_control.png``.
 
@@ -28,6 +30,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from _common import ROOT, write_section
 
+from wecss.control import compile_scene
+from wecss.control.design import noncausal_optimum
 from wecss.devices import Device
 from wecss.results import capture_width_ratio
 from wecss.sim import Scene, SimulationDiverged, default_scene_path, simulate
@@ -69,9 +73,27 @@ def m4_scene(device: str, period: float, duration: str, controller: dict, method
     return Scene.from_dict(base)
 
 
+def constrained_optimum(device: str, period: float, duration: str) -> float | None:
+    """The constrained non-causal optimum of the sea state (``wecss.control.design.noncausal_optimum``: mechanical
+    power within the hinges' stroke limits, all PTOs together, on the linear model over the run's periodic record)
+    [W], or None where the programme does not settle (said on stdout)."""
+    sc = m4_scene(device, period, duration, {"name": "damping"}, "linear")
+    compiled = compile_scene(sc)
+    context, exc = compiled.control_context, compiled.excitation
+    try:
+        optimum = noncausal_optimum(
+            context.linear_model(), exc.omega, exc.coefficients, sc.sea.duration_s, stroke_limit=context.stroke_limit
+        )
+    except RuntimeError as err:
+        print(f"Tp {period}: no constrained optimum ({err})", flush=True)
+        return None
+    return optimum.value
+
+
 def run_all(device: str, periods: tuple[float, ...], duration: str, controllers: dict, methods: dict) -> list[dict]:
     rows = []
     for period in periods:
+        optimum = constrained_optimum(device, period, duration)
         for label, controller in controllers.items():
             for method, kind in methods.items():
                 start = time.perf_counter()
@@ -87,13 +109,15 @@ def run_all(device: str, periods: tuple[float, ...], duration: str, controllers:
                     "tp": period, "controller": label, "model": kind, "power": power, "total": float(np.sum(power)),
                     "cwr": float(capture_width_ratio(ds)), "rms": ds.rms_pto_angle.values,
                     "share": float(ds.attrs["share_of_power_bound"]),
+                    "ceiling": float("nan") if optimum is None else float(np.sum(power)) / optimum,
                     "stop_time": float(np.sum(ds.stroke_limit_time.values)), "seconds": seconds,
                     "fallbacks": ds.attrs.get("controller_fallbacks", "-"),
                 }  # fmt: skip
                 rows.append(row)
                 print(
                     f"Tp {period} {label:22s} {kind:9s} total {row['total'] * 1e3:8.2f} mW  CWR {row['cwr']:.3f}  "
-                    f"share {row['share']:.3f}  past limit {row['stop_time']:.2f} s  ({seconds:.1f} s)",
+                    f"share {row['share']:.3f} (of the constrained optimum {row['ceiling']:.3f})  "
+                    f"past limit {row['stop_time']:.2f} s  ({seconds:.1f} s)",
                     flush=True,
                 )
     return rows
@@ -108,9 +132,10 @@ def table(rows: list[dict], pto_names: list[str]) -> str:
     head = (
         "| Tp [s] | controller | model | "
         + " | ".join(f"{n} [mW]" for n in pto_names)
-        + " | total [mW] | CWR | RMS angle [deg] | share of bound | past stroke limit, sum of PTOs [s] | run [s] |"
+        + " | total [mW] | CWR | RMS angle [deg] | share of bound | share of constrained optimum"
+        + " | past stroke limit, sum of PTOs [s] | run [s] |"
     )
-    lines = [head, "|" + "---|" * (9 + len(pto_names))]
+    lines = [head, "|" + "---|" * (10 + len(pto_names))]
     for r in rows:
         if "failed" in r:
             lines.append(f"| {r['tp']} | {r['controller']} | {r['model']} | diverged: {r['failed']} |")
@@ -119,7 +144,7 @@ def table(rows: list[dict], pto_names: list[str]) -> str:
         rms = ", ".join(f"{np.degrees(a):.2f}" for a in r["rms"])
         lines.append(
             f"| {r['tp']} | {r['controller']} | {r['model']} | {per} | {r['total'] * 1e3:.1f} | {r['cwr']:.3f} | "
-            f"{rms} | {r['share']:.3f} | {r['stop_time']:.2f} | {r['seconds']:.1f} |"
+            f"{rms} | {r['share']:.3f} | {r['ceiling']:.3f} | {r['stop_time']:.2f} | {r['seconds']:.1f} |"
         )
     return "\n".join(lines)
 

@@ -121,8 +121,12 @@ CHANNELS: tuple[Channel, ...] = (
         "the hydrodynamic terms' forces and moments per body (wecss.compiled._viscous.TERM_ROWS), world axes",
         ("hydrodynamics",),
     ),
+    Channel("p", "n_pto", "absorbed PTO power over the step ending here (the recorder's, from the work)", ("pto",)),
 )
-"""The recorded arrays, in the order the fixed-step kernels hand them to the recorder."""
+"""The recorded arrays, in the order the fixed-step kernels hand them to the recorder; the last, ``p``, the recorder
+makes itself: the absorbed PTO power of the step that ends at the saved step, the work
+of a sampled controller's force held over the step divided by the step (exact for a held force), or for a
+continuous force law (linear gains) its power at the step's end (the quadrature of the runs' statistics)."""
 
 CHANNEL_NAMES: tuple[str, ...] = tuple(c.name for c in CHANNELS)
 
@@ -266,7 +270,8 @@ VARIABLES: tuple[Variable, ...] = (
         "pto_power",
         "pto",
         ("time", "pto"),
-        "power absorbed by the PTO, -(force - device spring force) * stroke rate",
+        "power absorbed by the PTO over the step ending here: a held controller force's work over the step / step; "
+        "-(force - device spring force) * stroke rate for linear gains",
         "W",
         "pto_power",
     ),

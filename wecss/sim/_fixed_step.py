@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import TERM_ROWS, CompiledScene, Plant, RadiationArrays
+from ..compiled import TERM_ROWS, CompiledScene, Plant, RadiationArrays, saturate
 from ..compiled.kernels import configure, respond, workspace
 from ..control import ControlledScene
 from ..outputs import CHANNEL_NAMES
@@ -170,6 +170,7 @@ def run_fixed_step(
     n_rows = min(n_save, (STREAM_STEPS + chunk) // every + 2) if stream is not None and every else n_save
     n_pto = p.pto_kind.size
     hydro_order = grouped_hydro_order(controlled)
+    sampled = not controlled.linear_controller and n_pto > 0  # a controller's force, held over its period
     out = new_store(
         every,
         stats_start(controlled),
@@ -177,6 +178,8 @@ def run_fixed_step(
         _sizes(controlled),
         scene.outputs.variables,
         {"rad": hydro_order, "exc": hydro_order},
+        sampled=sampled,
+        h=h,
     )
     q, v = controlled.initial_state()
     command = np.zeros(n_pto)
@@ -195,6 +198,8 @@ def run_fixed_step(
     buf[:, 0] = buf[:, r.depth] = u0
     pos = np.zeros(1, dtype=np.int64)
     pto_now = np.stack([x0, xd0, f0])
+    out.last_stroke[:] = x0
+    p0 = np.zeros(n_pto) if sampled else -(f0 + p.pto_spring * x0) * xd0  # the recorder's power at step 0
     state = LoopState(q, v, acc, acc_prev, z, u_now, buf, pos, pto_now, far_sums_array(r))
     settings = StepSettings(
         h,
@@ -204,8 +209,10 @@ def run_fixed_step(
         scene.solver.angle_bound,
     )
     if n_save:  # the row at step 0: the initial state (no memory force yet)
-        first = {"q": q, "v": v, "a": a0, "x": x0, "xd": xd0, "f": f0, "exc": exc0, "terms": terms0}
-        first["rad"] = np.zeros(u0.size)
+        first = {
+            "q": q, "v": v, "a": a0, "x": x0, "xd": xd0, "f": f0, "rad": np.zeros(u0.size), "exc": exc0,
+            "terms": terms0, "p": p0,
+        }  # fmt: skip
         for name, rows, order in zip(CHANNEL_NAMES, out.series, out.columns, strict=True):
             rows[0] = first[name][order]
         out.save_index[0] = 1
@@ -239,6 +246,7 @@ def run_fixed_step(
             command = loop.force(done * h, pto_now[0], pto_now[1], full_state)
             if np.any(command != held):
                 runner.command_changed(p, r, state, held, command)
+            out.held[:] = saturate(command, p.pto_force_limit)  # what the kernels apply over the chunk's steps
         status, at = runner.advance(
             prepared, Chunk(p, r, excitation.chunk(done, m), command, done, settings, state, out, work)
         )

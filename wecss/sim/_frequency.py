@@ -14,7 +14,7 @@ from ..linear import linearize, response_amplitudes
 from ..scene import Capabilities, Runner, SceneError
 from ..waves import evaluate
 from ._load_amplitudes import Spectral
-from ._record import Record, no_terms, window_statistics
+from ._record import Record, continuous_power, no_terms, window_statistics
 
 
 class FrequencyDomain(Runner):
@@ -83,7 +83,8 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
     stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
     stroke_rate = rate @ model.pto_jacobian.T
     pto_force = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, stroke, stroke_rate) - p.pto_spring * stroke
-    stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
+    power = continuous_power(compiled, stroke, stroke_rate, pto_force)  # linear gains: a continuous force
+    stats = window_statistics(compiled, stroke, power)
     saved = time[keep]
     velocity_hat = 1j * omega * (model.hydro_jacobian @ amplitudes)  # hydro-DOF velocities (n_h, n_w)
     added, damping = model.hydro.at(omega)
@@ -98,6 +99,7 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
         "rad": signal(memory_hat, saved),
         "exc": signal(coefficients, saved),
         "terms": no_terms(compiled, saved.size),
+        "p": power[keep],
     }
     record = Record(
         time=saved,

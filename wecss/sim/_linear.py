@@ -20,7 +20,7 @@ from ..waves import evaluate
 from ._control import ControlLoop
 from ._dataset import build_result
 from ._errors import PtoLimitExceeded
-from ._record import Record, limit_counts, no_terms, window_statistics
+from ._record import Record, continuous_power, held_power, limit_counts, no_terms, window_statistics
 
 
 class LinearRunner(Runner):
@@ -138,7 +138,15 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     stroke_rate = rate @ g.T
     pto_force = pto_control_force(applied, model.pto_damping, model.pto_stiffness, stroke, stroke_rate)
     pto_force -= p.pto_spring * stroke  # the device spring
-    stats = window_statistics(compiled, stroke, stroke_rate, pto_force)
+    sampled = not (compiled.linear_controller or n_pto == 0)
+    # a sampled controller's force is held over each step: its work is exact; a continuous law (linear gains, also
+    # where the limits make this run hold it over each step) keeps the quadrature of its power at the steps
+    power = (
+        held_power(applied, stroke, compiled.dt)
+        if sampled
+        else continuous_power(compiled, stroke, stroke_rate, pto_force)
+    )
+    stats = window_statistics(compiled, stroke, power)
     run_time = _time.perf_counter() - start
     assert model.radiation is not None
     solver = {
@@ -150,6 +158,7 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     series = {
         "q": (compiled.q0[None] + xi)[keep], "v": rate[keep], "a": acc, "x": stroke[keep], "xd": stroke_rate[keep],
         "f": pto_force[keep], "rad": rad, "exc": exc[keep], "terms": no_terms(compiled, acc.shape[0]),
+        "p": power[keep],
     }  # fmt: skip
     return Record(
         time=time[keep],

@@ -46,7 +46,14 @@ class Store(NamedTuple):
     stroke^2, count, stroke per PTO), [corrector evaluations, largest per step, Newton steps] into
     ``evaluations``, and per PTO into ``limits`` (4, n_pto): the steps with the force at its limit, the episodes
     of it (steps where it starts), the steps with the stroke beyond its limit (the end stop engaged), the episodes
-    of that (``limit_last``: the last step each was active)."""
+    of that (``limit_last``: the last step each was active).
+
+    The absorbed PTO power of each step (the channel ``p``, made here: ``power``) is the work of the force over the
+    step divided by the step ``h``: for a sampled controller (``sampled``) the force ``held`` over the step (the
+    loop sets it at each command: the command saturated at the force limit) times the stroke's change since the
+    last step (``last_stroke``), exact for a held force; for a continuous force law (linear gains, or no
+    controller force) its power at the step's end, -(f + k_spring x) x_dot, whose sum over the window is the
+    rectangle rule."""
 
     every: int
     stats_start: int
@@ -57,6 +64,11 @@ class Store(NamedTuple):
     evaluations: np.ndarray
     limits: np.ndarray
     limit_last: np.ndarray
+    sampled: bool
+    h: float
+    held: np.ndarray
+    last_stroke: np.ndarray
+    power: np.ndarray
 
 
 def new_store(
@@ -66,10 +78,15 @@ def new_store(
     sizes: dict[str, int],
     groups: tuple[str, ...],
     columns: dict[str, np.ndarray],
+    *,
+    sampled: bool = False,
+    h: float = 1.0,
 ) -> Store:
     """A :class:`Store` with ``n_rows`` saved rows (0: none) for the channels the output ``groups`` read (and
     those always kept), one scratch row for the others. ``sizes``: columns per size name of the channels ("nq",
-    "nv", "n_pto", "n_h"); ``columns``: the stored column order of a channel where it is not the natural one."""
+    "nv", "n_pto", "n_h"); ``columns``: the stored column order of a channel where it is not the natural one;
+    ``sampled``: the PTO force is a sampled controller's, held over each step ``h`` [s] (its power is its work;
+    set ``held`` and ``last_stroke`` before the first step)."""
     series, maps = [], []
     for channel in CHANNELS:
         width = sizes[channel.size]
@@ -88,6 +105,11 @@ def new_store(
         evaluations=np.zeros(3, dtype=np.int64),
         limits=np.zeros((4, n_pto), dtype=np.int64),
         limit_last=np.full((2, n_pto), -2, dtype=np.int64),
+        sampled=bool(sampled),
+        h=float(h),
+        held=np.zeros(n_pto),
+        last_stroke=np.zeros(n_pto),
+        power=np.zeros(n_pto),
     )
 
 
@@ -162,21 +184,29 @@ def out_of_bounds(q: np.ndarray, bounded: np.ndarray, bound: float) -> bool:
 @kernel
 def record_step(out: Store, n1: int, p: Plant, sources: tuple[np.ndarray, ...]) -> None:
     """Record global step ``n1``: ``sources`` the step's arrays, one per channel in ``wecss.outputs.CHANNELS``'s
-    order (configuration, velocities, accelerations, PTO strokes, rates, forces, memory force and excitation on
-    the hydro DOFs in the database's order); the saved rows, the limits' counts and the window's sums (see
-    :class:`Store`)."""
+    order but the recorder's own (configuration, velocities, accelerations, PTO strokes, rates, forces, memory
+    force and excitation on the hydro DOFs in the database's order); the step's absorbed PTO power, the saved
+    rows, the limits' counts and the window's sums (see :class:`Store`)."""
+    x, xd, f = sources[_X], sources[_XD], sources[_F]
+    spring = p.pto_spring
+    power = out.power
+    for k in range(x.shape[0]):
+        if out.sampled:  # the held force's work over the step (the device spring is conservative, left out)
+            power[k] = -out.held[k] * (x[k] - out.last_stroke[k]) / out.h
+        else:  # a continuous force law: its power at the step's end
+            power[k] = -(f[k] + spring[k] * x[k]) * xd[k]
+        out.last_stroke[k] = x[k]
     series = out.series
     if out.every > 0 and n1 % out.every == 0 and out.save_index[0] < series[0].shape[0]:
         j = out.save_index[0]
         for s in range(len(series)):
             dest = series[s]
-            source = sources[s]
+            source = sources[s] if s < len(sources) else power  # the recorder's own channel comes last
             order = out.columns[s]
             row = min(j, dest.shape[0] - 1)  # one scratch row where no output reads the channel
             for c in range(order.shape[0]):
                 dest[row, c] = source[order[c]]
         out.save_index[0] = j + 1
-    x, xd, f = sources[_X], sources[_XD], sources[_F]
     for k in range(x.shape[0]):
         saturated = abs(f[k] + p.pto_spring[k] * x[k]) >= p.pto_force_limit[k] * (1.0 - 1e-12)
         stopped = abs(x[k]) > p.pto_stroke_limit[k]
@@ -186,9 +216,8 @@ def record_step(out: Store, n1: int, p: Plant, sources: tuple[np.ndarray, ...]) 
                     out.limits[row + 1, k] += 1  # an episode starts
                 out.limits[row, k] += 1
                 out.limit_last[row // 2, k] = n1
-    spring = p.pto_spring
     if n1 >= out.stats_start:
-        out.stats[0] += -(f + spring * x) * xd  # absorbed power: the device spring's force is conservative, left out
+        out.stats[0] += power
         out.stats[1] += x * x
         out.stats[2] += 1.0
         out.stats[3] += x

@@ -84,11 +84,10 @@ def _has_ptos(qs: Quantities) -> bool:
 
 
 def _pto_power(qs: Quantities) -> np.ndarray | None:
-    """Absorbed power: the device spring's force -k x is conservative and left out."""
-    if not _has_ptos(qs):
-        return None
-    r = qs.record
-    return -(r["f"] + qs.controlled.plant.pto_spring * r["x"]) * r["xd"]
+    """Absorbed power of the step ending at each saved step, as the run recorded it (the channel ``p``: the work of
+    a sampled controller's held force over the step, or a continuous force law's power; the device spring's force
+    -k x is conservative and left out)."""
+    return qs.record["p"] if _has_ptos(qs) else None
 
 
 def _hydro_velocity(qs: Quantities) -> np.ndarray:

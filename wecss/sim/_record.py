@@ -79,14 +79,29 @@ def stats_start(compiled: CompiledScene) -> int:
     return n - max(1, round(compiled.scene.outputs.window * n)) + 1
 
 
-def window_statistics(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Sums over the statistics window of every-step PTO strokes ``x``, rates ``xd`` and forces ``f``
-    (n_steps + 1, n_pto): absorbed power (the device spring left out, as conservative), stroke^2, count, stroke;
-    what the fixed-step kernels accumulate as they go."""
+def continuous_power(compiled: CompiledScene, x: np.ndarray, xd: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Absorbed power of a continuous PTO force law (linear gains) at the steps: -(f + k_spring x) x_dot for
+    strokes ``x``, rates ``xd`` and forces ``f`` (the device spring included, as recorded) (n, n_pto) [W]; the
+    device spring's force is conservative and left out."""
+    return -(f + compiled.plant.pto_spring * x) * xd
+
+
+def held_power(held: np.ndarray, x: np.ndarray, dt: float) -> np.ndarray:
+    """Absorbed power of PTO forces ``held`` over each step (row k: the force over the step ending at step k),
+    the work -f_k (x_k - x_{k-1}) over the step ``dt`` [s] divided by it, exact for a held force (n, n_pto) [W];
+    0 at step 0."""
+    out = np.zeros_like(x)
+    out[1:] = -held[1:] * np.diff(x, axis=0) / dt
+    return out
+
+
+def window_statistics(compiled: CompiledScene, x: np.ndarray, power: np.ndarray) -> np.ndarray:
+    """Sums over the statistics window of every-step PTO strokes ``x`` and the absorbed power of each step
+    ``power`` (n_steps + 1, n_pto; :func:`continuous_power` or :func:`held_power`): absorbed power, stroke^2,
+    count, stroke; what the fixed-step kernels accumulate as they go."""
     window = slice(stats_start(compiled), None)
-    power = -(f[window] + compiled.plant.pto_spring * x[window]) * xd[window]
     xs = x[window]
-    return np.stack([power.sum(0), (xs**2).sum(0), np.full(x.shape[1], float(xs.shape[0])), xs.sum(0)])
+    return np.stack([power[window].sum(0), (xs**2).sum(0), np.full(x.shape[1], float(xs.shape[0])), xs.sum(0)])
 
 
 def limit_counts(stroke: np.ndarray, control: np.ndarray, limits: tuple[np.ndarray, np.ndarray]) -> np.ndarray:

@@ -13,7 +13,7 @@ from ..compiled.kernels import workspace
 from ..control import ControlledScene
 from ..scene import Capabilities, Runner
 from ._errors import SimulationDiverged
-from ._record import Record, window_statistics
+from ._record import Record, continuous_power, window_statistics
 from ._rk4 import state_rates
 
 
@@ -77,7 +77,8 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
         for k, i in (("a", 1), ("x", 3), ("xd", 4), ("f", 5), ("rad", 6), ("exc", 7), ("terms", 8))
     }
     stack["q"], stack["v"] = sol.y[:nq].T.copy(), sol.y[nq : nq + nv].T.copy()
-    stats = window_statistics(compiled, stack["x"], stack["xd"], stack["f"])
+    stack["p"] = continuous_power(compiled, stack["x"], stack["xd"], stack["f"])  # linear gains only
+    stats = window_statistics(compiled, stack["x"], stack["p"])
     if progress:
         print(f"reference solver: {sol.nfev} evaluations", file=sys.stderr)
     saved = {k: v[::every] for k, v in stack.items()}

@@ -8,3 +8,7 @@ from ._frequency_design import optimal_damping as optimal_damping
 from ._frequency_design import optimal_spring_damper as optimal_spring_damper
 from ._frequency_design import power_bound as power_bound
 from ._frequency_design import pto_response as pto_response
+from ._optimum import NonCausalOptimum as NonCausalOptimum
+from ._optimum import noncausal_optimum as noncausal_optimum
+from ._periodic import PeriodicResponse as PeriodicResponse
+from ._periodic import periodic_response as periodic_response

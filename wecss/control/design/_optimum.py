@@ -1,0 +1,420 @@
+"""The non-causal optimum: the best PTO force trajectory over a periodic wave record on the linear model, all PTOs
+together, within force, stroke and force-rate limits, for the mean absorbed (mechanical) power, the mechanical power
+less a copper loss R f^2, or the electrical power of an asymmetric conversion efficiency (P_elec = eta P when
+absorbing, P / eta when supplying, per PTO). It knows the whole record (no causal controller can do better on the
+same record and model, within its force basis) and is the ceiling a controller's power is judged by, beside the
+unconstrained complex-conjugate bound; its trajectory is a design target.
+
+Formulation (pseudo-spectral): the force is a Fourier series on the record's harmonics 1 ... M (``_periodic``; M a
+``basis`` multiple of the waves' highest harmonic, wider than the waves' own so that a saturated force can take its
+shape), the limits hold at the N > 2 M sample points of the period, and the mean mechanical power is exact
+(Parseval). Mechanical power and copper loss make a convex quadratic programme (``_spectral_qp``), solved exactly by
+a dual active-set method with a certificate: the dual value bounds the optimum from above, the primal value from
+below, and their gap is reported. The electrical objective of the asymmetric efficiency is not convex: it is
+P_elec = eta P - (1 / eta - eta) max(-P, 0), and max(f v, 0) <= (alpha f + v / alpha)^2 / 4 for any alpha > 0,
+with equality at a point (f_0, v_0) for alpha^2 = |v_0 / f_0|; so each step of a convex-concave procedure solves
+the convex programme with that majorant at the samples where the present trajectory supplies power (and at every
+sample where the new one would), never lowering the electrical power; it stops at a stationary point (a local
+optimum, certified step by step), evaluated at the samples. eta times the mechanical optimum bounds it from above
+(P_elec <= eta P pointwise).
+"""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ._periodic import PeriodicResponse, periodic_response
+from ._spectral_qp import Penalties, Signal, SpectralProgramme, SpectralSolution
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from ...linear import LinearModel
+
+OBJECTIVES = ("mechanical", "copper", "electrical")
+
+CCP_TOLERANCE: float = 1e-7
+"""The convex-concave procedure stops when an iteration raises the electrical power by less than this share."""
+
+CCP_ITERATIONS: int = 60
+"""Most iterations of the convex-concave procedure."""
+
+
+@dataclass
+class NonCausalOptimum:
+    """The non-causal optimum of a periodic record (module docstring).
+
+    Attributes
+    ----------
+    objective : str
+        "mechanical", "copper" or "electrical".
+    value : float
+        The optimum of the objective's mean power [W]: absorbed power, absorbed power less copper loss, or
+        electrical power (at the samples).
+    upper_bound : float
+        A certified upper bound on the programme's optimum [W] (the dual value; for "electrical", efficiency times
+        the mechanical optimum's bound).
+    gap : float
+        The final convex programme's duality gap [W].
+    absorbed : ndarray (n_pto,)
+        Mean absorbed mechanical power per PTO [W].
+    electrical : ndarray (n_pto,) or None
+        Mean electrical power per PTO at the samples [W] (with an efficiency).
+    force : complex ndarray (M, n_pto)
+        The force's Fourier amplitudes [N or N m].
+    time : ndarray (N,)
+        Sample times [s].
+    pto_force, stroke, rate : ndarray (N, n_pto)
+        Force [N or N m], stroke from rest [m or rad] and stroke rate [m/s or rad/s] at the samples.
+    violation : float
+        Largest limit violation at the samples, relative to the limit [-].
+    iterations : int
+        Active-set iterations (summed over the convex-concave procedure).
+    ccp_iterations : int
+        Convex-concave iterations (0 for the convex objectives).
+    seconds : float
+        Wall time [s].
+    method : str
+        How the (last) convex programme was solved: "active set" or "interior point" (where the active set did not
+        settle).
+    periodic : PeriodicResponse
+    settings : dict
+        The limits, efficiency, copper loss and basis it was made with.
+    """
+
+    objective: str
+    value: float
+    upper_bound: float
+    gap: float
+    absorbed: np.ndarray
+    electrical: np.ndarray | None
+    force: np.ndarray
+    time: np.ndarray
+    pto_force: np.ndarray
+    stroke: np.ndarray
+    rate: np.ndarray
+    violation: float
+    iterations: int
+    ccp_iterations: int
+    seconds: float
+    method: str
+    periodic: PeriodicResponse = field(repr=False)
+    settings: dict = field(default_factory=dict)
+
+    @property
+    def total_absorbed(self) -> float:
+        """Total mean absorbed power [W]."""
+        return float(np.sum(self.absorbed))
+
+    def dataset(
+        self, pto_names: tuple[str, ...] | list[str] | None = None, pto_kinds: tuple[str, ...] | list[str] | None = None
+    ) -> xr.Dataset:
+        """The optimal trajectory as a Dataset: force, stroke, stroke rate and instantaneous absorbed power at the
+        samples (``time``, ``pto``), the force's amplitudes per harmonic (``omega``; complex as [re, im]), the mean
+        powers, and the optimum, bound, gap and settings as attributes. As in a run's result, a per-PTO variable
+        comes per PTO kind (``pto_torque`` [N m] for rotary PTOs, ``pto_force`` [N] for linear ones, NaN for the
+        others), so that no variable mixes units.
+
+        Parameters
+        ----------
+        pto_names : sequence of str or None
+            The PTOs' names (default pto_0, pto_1, ...).
+        pto_kinds : sequence of str or None
+            "rotary" or "linear" per PTO (default: all linear).
+
+        Raises
+        ------
+        ValueError
+            If the names or kinds are not one per PTO, or a kind is unknown.
+        """
+        import xarray as xr
+
+        from ...outputs import PTO_KINDS
+
+        n_pto = self.absorbed.size
+        names = list(pto_names) if pto_names is not None else [f"pto_{k}" for k in range(n_pto)]
+        kinds = list(pto_kinds) if pto_kinds is not None else ["linear"] * n_pto
+        if len(names) != n_pto or len(kinds) != n_pto or not set(kinds) <= set(PTO_KINDS):
+            raise ValueError(
+                f"pto_names and pto_kinds must give one name and one kind of {PTO_KINDS} per PTO ({n_pto}); "
+                f"got {pto_names!r} and {pto_kinds!r}"
+            )
+        rotary = np.array([k == "rotary" for k in kinds])
+        table = {  # name per kind (rotary, linear), long name, units per kind, values, dims
+            "force": (("pto_torque", "pto_force"), "optimal PTO force", ("N m", "N"), self.pto_force, ("time", "pto")),
+            "stroke": (("pto_angle", "pto_displacement"), "PTO stroke from rest", ("rad", "m"), self.stroke,
+                       ("time", "pto")),
+            "rate": (("pto_angular_velocity", "pto_velocity"), "PTO stroke rate", ("rad/s", "m/s"), self.rate,
+                     ("time", "pto")),
+        }  # fmt: skip
+        data: dict = {}
+        for kind_names, long_name, units, values, dims in table.values():
+            for k, (name, unit) in enumerate(zip(kind_names, units, strict=True)):
+                mask = rotary if k == 0 else ~rotary
+                if np.any(mask):
+                    data[name] = (dims, np.where(mask[None], values, np.nan), {"long_name": long_name, "units": unit})
+        amplitude = np.stack([self.force.real, self.force.imag], axis=-1)
+        for k, (name, unit) in enumerate(zip(("torque_amplitude", "force_amplitude"), ("N m", "N"), strict=True)):
+            mask = rotary if k == 0 else ~rotary
+            if np.any(mask):
+                data[name] = (
+                    ("omega", "pto", "complex"), np.where(mask[None, :, None], amplitude, np.nan),
+                    {"long_name": "complex amplitude of the optimal PTO force, Re[F exp(i omega t)]", "units": unit},
+                )  # fmt: skip
+        data["pto_power"] = (
+            ("time", "pto"), -self.pto_force * self.rate, {"long_name": "absorbed PTO power", "units": "W"},
+        )  # fmt: skip
+        data["mean_pto_power"] = (("pto",), self.absorbed, {"long_name": "mean absorbed PTO power", "units": "W"})
+        if self.electrical is not None:
+            data["mean_electrical_power"] = (
+                ("pto",), self.electrical, {"long_name": "mean electrical PTO power at the samples", "units": "W"},
+            )  # fmt: skip
+        attrs = {
+            "title": "wecss non-causal optimum",
+            "objective": self.objective,
+            "optimum_W": self.value,
+            "upper_bound_W": self.upper_bound,
+            "duality_gap_W": self.gap,
+            "largest_violation": self.violation,
+            "record_period_s": self.periodic.period,
+            "harmonics": f"{self.periodic.harmonic[0]}-{self.periodic.harmonic[-1]}",
+            "samples": self.periodic.points,
+            "response": self.periodic.response,
+            "solver": self.method,
+            "iterations": self.iterations,
+            "ccp_iterations": self.ccp_iterations,
+            "run_time_s": self.seconds,
+            **{k: (v if v is not None else "none") for k, v in self.settings.items()},
+        }
+        coords = {
+            "time": ("time", self.time, {"long_name": "time within the period", "units": "s"}),
+            "pto": ("pto", names, {"long_name": "PTO name"}),
+            "pto_kind": ("pto", kinds, {"long_name": "PTO kind"}),
+            "omega": ("omega", self.periodic.omega, {"long_name": "harmonic of the record", "units": "rad/s"}),
+            "complex": ["re", "im"],
+        }
+        return xr.Dataset(data, coords=coords, attrs=_netcdf_attrs(attrs))
+
+
+def _netcdf_attrs(attrs: dict) -> dict:
+    out = {}
+    for k, v in attrs.items():
+        if isinstance(v, np.ndarray):
+            v = v.tolist()
+        if isinstance(v, list | tuple):
+            v = ", ".join(str(x) for x in v)
+        out[k] = v
+    return out
+
+
+def _per_pto(value: np.ndarray | float | None, n_pto: int, label: str) -> np.ndarray:
+    if value is None:
+        return np.full(n_pto, np.inf)
+    out = np.broadcast_to(np.asarray(value, dtype=float), (n_pto,)).copy() if np.size(value) in (1, n_pto) else None
+    if out is None or not np.all(out > 0):
+        raise ValueError(f"{label} must be positive (inf: none), 1 or {n_pto} values; got {value!r}")
+    return out
+
+
+def noncausal_optimum(
+    model: LinearModel,
+    omega: np.ndarray,
+    coefficients: np.ndarray,
+    period: float,
+    *,
+    force_limit: np.ndarray | float | None = None,
+    stroke_limit: np.ndarray | float | None = None,
+    rate_limit: np.ndarray | float | None = None,
+    objective: str = "mechanical",
+    efficiency: float | None = None,
+    copper_loss: np.ndarray | float | None = None,
+    harmonics: int | None = None,
+    basis: float = 2.0,
+    lowest: int | None = None,
+    points: int | None = None,
+    response: str = "database",
+) -> NonCausalOptimum:
+    """The best PTO force trajectory over a periodic record (module docstring).
+
+    Parameters
+    ----------
+    model : LinearModel
+        The open plant (``context.linear_model()``).
+    omega, coefficients : ndarray
+        The record's wave components [rad/s] (whole multiples of 2 pi / ``period``) and their excitation on the hydro
+        DOFs (n_h, n_w) [N, N m] (``context.excitation``).
+    period : float
+        The record's repeat period [s] (``waves.repeat_period``).
+    force_limit, stroke_limit, rate_limit : float, array or None
+        Per PTO (or one for all; None or inf: none) [N or N m; m or rad from rest; N/s or N m/s].
+    objective : str
+        "mechanical" (mean absorbed power), "copper" (absorbed power less ``copper_loss`` R f^2 per PTO [W per N^2
+        or per (N m)^2]) or "electrical" (P_elec with ``efficiency`` eta in (0, 1]).
+    efficiency : float or None
+        eta: needed for "electrical"; with the other objectives the electrical power of their optimum is reported.
+    harmonics, basis, lowest, points, response
+        The force basis (its highest harmonic M, or ``basis`` times the waves' highest; its lowest, by default the
+        waves'), the samples N and the frequency response ("database" or "fit"): see ``periodic_response``.
+
+    Returns
+    -------
+    NonCausalOptimum
+        The optimum [W], its certified upper bound and duality gap [W], the trajectory at the samples and the
+        force's amplitudes (``.dataset()`` for an xarray Dataset).
+
+    Raises
+    ------
+    ValueError
+        On bad settings (see ``periodic_response``), an objective without its efficiency or copper loss.
+    RuntimeError
+        If neither the active-set iteration nor the interior-point solve (for a programme small enough to hold
+        densely) finds the optimum.
+    """
+    start = _time.perf_counter()
+    if objective not in OBJECTIVES:
+        raise ValueError(f"objective must be one of {OBJECTIVES}; got {objective!r}")
+    if efficiency is not None and not (isinstance(efficiency, int | float) and 0 < efficiency <= 1):
+        raise ValueError(f"efficiency must lie in (0, 1]; got {efficiency!r}")
+    if objective == "electrical" and efficiency is None:
+        raise ValueError('objective "electrical" needs an efficiency')
+    if objective == "copper" and copper_loss is None:
+        raise ValueError('objective "copper" needs a copper_loss R [W per N^2]')
+    periodic = periodic_response(
+        model,
+        omega,
+        coefficients,
+        period,
+        harmonics=harmonics,
+        basis=basis,
+        lowest=lowest,
+        points=points,
+        response=response,
+    )
+    n_pto = periodic.n_pto
+    limits = {
+        "force_limit": _per_pto(force_limit, n_pto, "force_limit"),
+        "stroke_limit": _per_pto(stroke_limit, n_pto, "stroke_limit"),
+        "rate_limit": _per_pto(rate_limit, n_pto, "rate_limit"),
+    }
+    loss = np.zeros(n_pto) if copper_loss is None else np.broadcast_to(np.asarray(copper_loss, float), (n_pto,))
+    if np.any(loss < 0):
+        raise ValueError(f"copper_loss must be >= 0; got {copper_loss!r}")
+    signals = _signals(periodic, limits)
+    hermitian = 0.5 * (periodic.admittance + np.conj(np.swapaxes(periodic.admittance, 1, 2)))
+    linear = -0.5 * periodic.free_rate
+    if objective == "copper":
+        programme = SpectralProgramme(periodic, hermitian + np.diag(loss)[None], linear, signals)
+        solution, _ = programme.solve_robust()
+        iterations, ccp = solution.iterations, 0
+        value, bound = -solution.primal, -solution.dual
+    else:
+        mechanical = SpectralProgramme(periodic, hermitian, linear, signals)
+        solution, active = mechanical.solve_robust()
+        iterations, ccp = solution.iterations, 0
+        value, bound = -solution.primal, -solution.dual
+        if objective == "electrical" and efficiency is not None and efficiency < 1:
+            solution, value, iterations, ccp = _electrical(
+                periodic, hermitian, linear, signals, solution, active, float(efficiency)
+            )
+            bound = float(efficiency) * bound
+    force_samples, stroke, rate = solution.values[0], solution.values[1], solution.values[2]
+    absorbed = _absorbed(periodic, solution.force)
+    electrical = None
+    if efficiency is not None:
+        electrical = np.mean(_electrical_power(-force_samples * rate, float(efficiency)), axis=0)
+    if objective == "electrical" and electrical is not None:
+        value = float(np.sum(electrical))
+    return NonCausalOptimum(
+        objective=objective, value=float(value), upper_bound=float(bound), gap=float(solution.gap),
+        absorbed=absorbed, electrical=electrical, force=solution.force, time=periodic.time,
+        pto_force=force_samples, stroke=stroke, rate=rate, violation=solution.violation, iterations=iterations,
+        ccp_iterations=ccp, seconds=_time.perf_counter() - start, method=solution.method, periodic=periodic,
+        settings={
+            **{k: v.tolist() for k, v in limits.items()}, "efficiency": efficiency, "copper_loss": loss.tolist(),
+            "basis": float(periodic.harmonic[-1] / periodic.wave_harmonics.max()),
+        },
+    )  # fmt: skip
+
+
+def _signals(periodic: PeriodicResponse, limits: dict[str, np.ndarray]) -> list[Signal]:
+    """force, stroke, stroke rate and force rate, in that order, with their limits."""
+    m, n_pto, n = periodic.n_harmonics, periodic.n_pto, periodic.points
+    eye = np.broadcast_to(np.eye(n_pto, dtype=complex), (m, n_pto, n_pto))
+    w = periodic.omega[:, None, None]
+    free_stroke = periodic.stroke_at_equilibrium[None] + periodic.samples(
+        periodic.free_rate / (1j * periodic.omega[:, None])
+    )
+    force, stroke, rate = limits["force_limit"], limits["stroke_limit"], limits["rate_limit"]
+    out = [
+        Signal(eye, np.zeros((n, n_pto)), -force, force),
+        Signal(periodic.admittance / (1j * w), free_stroke, -stroke, stroke),
+        Signal(periodic.admittance, periodic.samples(periodic.free_rate)),
+    ]
+    if np.any(np.isfinite(rate)):
+        out.append(Signal(1j * w * eye, np.zeros((n, n_pto)), -rate, rate))
+    return [s if s.upper is None or np.any(np.isfinite(s.upper)) else Signal(s.operator, s.free) for s in out]
+
+
+def _absorbed(periodic: PeriodicResponse, force: np.ndarray) -> np.ndarray:
+    """Mean absorbed power per PTO of force amplitudes (M, n_pto) (Parseval) [W]."""
+    rate = periodic.free_rate + np.einsum("mpq,mq->mp", periodic.admittance, force)
+    return np.sum(-0.5 * np.real(np.conj(force) * rate), axis=0)
+
+
+def _electrical_power(power: np.ndarray, efficiency: float) -> np.ndarray:
+    """eta P absorbing, P / eta supplying."""
+    return np.where(power >= 0, efficiency * power, power / efficiency)
+
+
+def _electrical(
+    periodic: PeriodicResponse,
+    hermitian: np.ndarray,
+    linear: np.ndarray,
+    signals: list[Signal],
+    start: SpectralSolution,
+    active: np.ndarray | None,
+    efficiency: float,
+) -> tuple[SpectralSolution, float, int, int]:
+    """The convex-concave procedure of the module docstring, from the mechanical optimum ``start``."""
+    n = periodic.points
+    supply = 1.0 / efficiency - efficiency
+    weight = supply / (2.0 * n)  # w e^2 / 2 = supply e^2 / (4 N)
+    solution = start
+    iterations = start.iterations
+
+    def electrical(values: list[np.ndarray]) -> float:
+        return float(np.sum(np.mean(_electrical_power(-values[0] * values[2], efficiency), axis=0)))
+
+    value = electrical(solution.values)
+    force_rms = np.sqrt(np.mean(solution.values[0] ** 2, axis=0)) + 1e-300
+    rate_rms = np.sqrt(np.mean(solution.values[2] ** 2, axis=0)) + 1e-300
+    typical = rate_rms / force_rms  # |v / f| scale per PTO
+    ccp = 0
+    for ccp in range(1, CCP_ITERATIONS + 1):  # noqa: B007 (the count is returned)
+        f, v = solution.values[0], solution.values[2]
+        alpha = np.sqrt(np.clip(np.abs(v) / np.maximum(np.abs(f), 1e-300), 1e-4 * typical, 1e4 * typical))
+        rows = (f * v > 0) | (np.abs(f * v) <= 1e-9 * float(np.mean(np.abs(f * v))))  # supplying (or at zero)
+        while True:
+            j, p = np.nonzero(rows)
+            penalties = Penalties(
+                signal=np.tile(np.array([0, 2]), (j.size, 1)),
+                coefficient=np.stack([alpha[j, p], 1.0 / alpha[j, p]], axis=1),
+                pto=p, point=j, weight=np.full(j.size, weight),
+            )  # fmt: skip
+            programme = SpectralProgramme(periodic, efficiency * hermitian, efficiency * linear, signals, penalties)
+            trial, active = programme.solve_robust(active)
+            iterations += trial.iterations
+            new = (trial.values[0] * trial.values[2] > 0) & ~rows  # supplying where the majorant is not: add it
+            if not np.any(new):
+                break
+            rows |= new
+        trial_value = electrical(trial.values)
+        improved = trial_value - value
+        solution, value = trial, trial_value
+        if improved <= CCP_TOLERANCE * max(abs(value), 1e-300):
+            break
+    return solution, value, iterations, ccp
