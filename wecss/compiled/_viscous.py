@@ -24,6 +24,9 @@ drag) and the Morison elements' fluid inertia; world axes, moments about the cen
 
 DRAG_ROW, MORISON_ROW = (TERM_ROWS.index(k) for k in ("drag", "morison_inertia"))
 
+TERM_COLUMNS: int = len(TERM_ROWS) * 6
+"""Columns of one body in the ``terms`` channel: a force and a moment (6) per row of ``TERM_ROWS``."""
+
 
 class ViscousArrays(NamedTuple):
     """The viscous terms of a plant (empty: none).

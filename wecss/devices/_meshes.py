@@ -78,7 +78,7 @@ class BodyMesh:
             mesh fails its checks; FileNotFoundError if a file is missing.
         """
         from ..hydro.bem import read_geometry
-        from ..hydro.mesh import SurfaceMesh
+        from ..hydro.mesh import SurfaceMesh, revolve_profile
 
         body = model.bodies[list(model.body_names).index(self.body)]
         com = np.asarray(body.center_of_mass, dtype=float)
@@ -95,7 +95,7 @@ class BodyMesh:
                 f"{', '.join(floats)}"
             )
         float_body = floats[name]
-        mesh = SurfaceMesh.from_profile(
+        mesh = revolve_profile(
             float_body.profile,
             self.freeboard,
             center_of_mass_z=float(com[2]),

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import TERM_ROWS, CompiledScene, Plant, RadiationArrays, saturate
+from ..compiled import TERM_COLUMNS, CompiledScene, Plant, RadiationArrays, saturate
 from ..compiled.kernels import configure, respond, workspace
 from ..control import ControlledScene
 from ..outputs import CHANNEL_NAMES
@@ -144,7 +144,7 @@ def _diverged(
 def _sizes(controlled: ControlledScene) -> dict[str, int]:
     """Columns per channel size name (``wecss.outputs.Channel.size``)."""
     p = controlled.plant
-    n_terms = len(TERM_ROWS) * 6 * p.com0.shape[0]
+    n_terms = TERM_COLUMNS * p.com0.shape[0]
     return {
         "nq": controlled.q0.size,
         "nv": p.twists.shape[0],

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiled import TERM_ROWS, CompiledScene
+from ..compiled import TERM_COLUMNS, CompiledScene
 from ..outputs import CHANNEL_NAMES
 
 
@@ -70,7 +70,7 @@ class Record:
 
 def no_terms(compiled: CompiledScene, n_rows: int) -> np.ndarray:
     """The ``terms`` channel of a run that computes no hydrodynamic terms: zeros (n_rows, n_terms)."""
-    return np.zeros((n_rows, len(TERM_ROWS) * 6 * len(compiled.device.model.bodies)))
+    return np.zeros((n_rows, TERM_COLUMNS * len(compiled.device.model.bodies)))
 
 
 def stats_start(compiled: CompiledScene) -> int:

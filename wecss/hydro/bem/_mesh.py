@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..mesh import radial_scale as _radial_scale
+from .._polygon import radial_scale as _radial_scale
 from ._lazy import import_capytaine
 from ._profile import AxisymmetricProfile
 
@@ -56,7 +56,7 @@ def sectors_for(radius: float, panel_size: float) -> int:
 
 def radial_scale(n_sectors: int) -> float:
     """Factor on radii that gives a regular ``n_sectors``-gon the area of its circle (the surface meshes' own,
-    :func:`wecss.hydro.mesh.radial_scale`)."""
+    ``wecss.hydro._polygon.radial_scale``)."""
     return _radial_scale(n_sectors)
 
 

@@ -3,13 +3,23 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
     from .._hydrodata import HydroData
-    from ._surface import SurfaceMesh
+    from ._displaced import Displaced
+
+
+class _Mesh(Protocol):
+    """What :func:`compare` reads of a mesh (a ``SurfaceMesh``)."""
+
+    @property
+    def name(self) -> str: ...
+
+    def displaced(self, position: Any = ..., rotation: Any = ...) -> Displaced: ...
+
 
 VOLUME_TOLERANCE: float = 1e-4
 """Relative difference of displaced volume up to which a mesh and a database agree (:meth:`MeshComparison.agrees`)."""
@@ -95,7 +105,7 @@ class MeshComparison:
         return f"mesh {self.mesh_name!r} against the database's body {self.body!r}: " + ", ".join(parts)
 
 
-def compare(mesh: SurfaceMesh, hydro: HydroData, body: str) -> MeshComparison:
+def compare(mesh: _Mesh, hydro: HydroData, body: str) -> MeshComparison:
     """See :meth:`SurfaceMesh.compare_with`."""
     if body not in hydro.bodies:
         raise ValueError(f"the database has no body {body!r}; bodies: {', '.join(hydro.bodies)}")

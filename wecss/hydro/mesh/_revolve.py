@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._polygon import radial_scale
 from ._surface import SurfaceMesh
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -38,12 +39,6 @@ PANELS_PER_RADIUS: float = 6.0
 """Default panel size: the waterline radius over this number."""
 
 _GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(24)
-
-
-def radial_scale(sectors: int) -> float:
-    """Factor on radii that gives a regular ``sectors``-gon the area of its circle, sqrt(theta / sin theta)."""
-    theta = 2 * math.pi / sectors
-    return math.sqrt(theta / math.sin(theta))
 
 
 def arc_points(

@@ -12,6 +12,8 @@ import os
 
 import numpy as np
 
+from ._errors import MeshError
+
 _RECORD = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
 
 
@@ -25,8 +27,6 @@ def read_stl(path: str | os.PathLike[str]) -> np.ndarray:
     MeshError
         If it holds no triangles, a facet with other than three vertices, or numbers that do not parse.
     """
-    from ._surface import MeshError
-
     file = os.fspath(path)
     if not os.path.isfile(file):
         raise FileNotFoundError(f"no STL file at {file!r}")

@@ -10,18 +10,14 @@ import numpy as np
 
 from ._clip import area_vectors
 from ._displaced import Displaced, displaced
+from ._errors import MeshError
 
 if TYPE_CHECKING:  # pragma: no cover
     from .._hydrodata import HydroData
-    from ..bem import AxisymmetricProfile
     from ._compare import MeshComparison
 
 DEGENERATE_AREA: float = 1e-14
 """A face whose area is below this share of the square of the mesh's largest extent is degenerate."""
-
-
-class MeshError(ValueError):
-    """A surface mesh is not usable: the message names the mesh (its file) and the problem."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,39 +125,6 @@ class SurfaceMesh:
             raise MeshError(f"{file}: scale must be a positive number; got {scale!r}")
         vertices, faces = merge_vertices(triangles * scale - origin_arr, file)
         return cls(vertices, faces, open_above=open_above, name=file)
-
-    @classmethod
-    def from_profile(
-        cls,
-        profile: AxisymmetricProfile,
-        freeboard: float,
-        *,
-        center_of_mass_z: float,
-        panel_size: float | None = None,
-        sectors: int | None = None,
-        aspect_ratio: float = 1.0,
-        name: str | None = None,
-    ) -> SurfaceMesh:
-        """The closed surface of an axisymmetric float: its profile revolved, with a vertical wall ``freeboard``
-        [m] above the waterline and a flat top (see :func:`wecss.hydro.mesh.revolve_profile`, which has the
-        parameters and says how the revolution keeps the volume).
-
-        Raises
-        ------
-        ValueError
-            On a non-positive freeboard or panel size, or fewer than 3 sectors.
-        """
-        from ._revolve import revolve_profile
-
-        return revolve_profile(
-            profile,
-            freeboard,
-            center_of_mass_z=center_of_mass_z,
-            panel_size=panel_size,
-            sectors=sectors,
-            aspect_ratio=aspect_ratio,
-            name=name,
-        )
 
     # --- geometry ---------------------------------------------------------------------------------
     @property
