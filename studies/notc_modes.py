@@ -52,6 +52,7 @@ def spec_with(tube: tuple[float, float], float_body: bool = True) -> dict:  # ty
     if not float_body:
         spec["bodies"] = [b for b in spec["bodies"] if b["name"] != "floater"]
         spec["joints"] = [j for j in spec["joints"] if j["name"] != "tip"]
+        spec["meshes"] = [m for m in spec.get("meshes", []) if m["body"] != "floater"]
         spec.pop("hydro")
     return spec
 
