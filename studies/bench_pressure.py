@@ -24,13 +24,18 @@ CASES = (
 )
 
 
-def per_step(scene: Scene, repeats: int) -> tuple[float, float]:
+def per_step(scene: Scene, repeats: int) -> tuple[float, float, int]:
     """Median and smallest time of the time loop per step [s] over ``repeats`` runs (the first, which compiles,
-    left out)."""
+    left out), and the points at which the last evaluation took the incident field (wet vertices and cut edges)."""
     compiled = compile_scene(scene)
     simulate(compiled)  # compiles the loop (not timed)
     times = [simulate(compiled).attrs["run_time_s"] / compiled.n_steps for _ in range(repeats)]
-    return float(np.median(times)), float(np.min(times))
+    mesh = compiled.plant.pressure.mesh
+    wet = mesh.height < 0.0
+    corners = wet[mesh.faces].sum(axis=1)
+    cut = int(np.count_nonzero((corners > 0) & (corners < 3)))
+    points = int(np.count_nonzero(wet)) + 2 * cut if scene.hydrodynamics.froude_krylov == "body-exact" else 0
+    return float(np.median(times)), float(np.min(times)), points
 
 
 def main() -> None:
@@ -46,10 +51,10 @@ def main() -> None:
     rows = []
     for name, hydrodynamics in CASES:
         scene = Scene.from_dict({**base.to_dict(), "hydrodynamics": hydrodynamics})
-        median, least = per_step(scene, repeats)
+        median, least, points = per_step(scene, repeats)
         pressure = compile_scene(scene).plant.pressure
-        rows.append((name, median, least, pressure.mesh.faces.shape[0], pressure.mesh.vertices.shape[0]))
-        print(f"{name}: {median * 1e6:.1f} us per step (least {least * 1e6:.1f})", flush=True)
+        rows.append((name, median, least, pressure.mesh.faces.shape[0], pressure.mesh.vertices.shape[0], points))
+        print(f"{name}: {median * 1e6:.1f} us per step (least {least * 1e6:.1f}), {points} field points", flush=True)
     if args.quick:
         return
     off = rows[0][1]
@@ -59,17 +64,20 @@ def main() -> None:
         f"m4-134, the default JONSWAP sea state, Beeman, dt = Tp/200, state-space radiation; median of {repeats} runs "
         f"of the whole record (the time loop alone), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}; "
         f"{datetime.date.today()}, load average {os.getloadavg()[0]:.1f} at the end. Each step evaluates the "
-        "configuration once (Beeman's corrector reuses it); the meshes are the spec's (`[[meshes]]`).",
+        "configuration once (Beeman's corrector reuses it); the meshes are the spec's (`[[meshes]]`). Field points: "
+        "where the last step took the incident field (wet vertices and cut edges; value and gradient each).",
         "",
-        "| case | per step [us] | least [us] | added [us] | triangles | vertices | added per triangle [ns] |",
-        "|---|---|---|---|---|---|---|",
+        "| case | per step [us] | least [us] | added [us] | triangles | vertices | field points | "
+        "added per triangle [ns] | added per field point [ns] |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
-    for name, median, least, faces, vertices in rows:
+    for name, median, least, faces, vertices, points in rows:
         added = median - off
         per_triangle = f"{added / faces * 1e9:.0f}" if faces else "-"
+        per_point = f"{added / points * 1e9:.0f}" if points else "-"
         lines.append(
             f"| {name} | {median * 1e6:.1f} | {least * 1e6:.1f} | {added * 1e6:.1f} | {faces or '-'} | "
-            f"{vertices or '-'} | {per_triangle} |"
+            f"{vertices or '-'} | {points or '-'} | {per_triangle} | {per_point} |"
         )
     write_section(ROOT / "docs" / "benchmarks.md", lines[0], "\n".join(lines))
     print("\n".join(lines))

@@ -15,6 +15,8 @@ from wecss.compiled._wave_field import (
     TABLE,
     calm_field,
     field_arrays,
+    field_refresh,
+    field_update,
     field_values,
     table_size,
 )
@@ -101,6 +103,35 @@ def test_table_against_direct_sums(depth: float, tolerance: float) -> None:
         assert np.max(np.abs(got[0] - want[0])) <= tolerance * sigma
         assert np.max(np.abs(got[1] - want[1])) <= tolerance * RHO * G * sigma
     assert table.status[0] == 0
+
+
+def test_a_step_refreshes_the_nodes_under_its_points_only() -> None:
+    """``field_refresh`` over an x' range brings the active nodes of the cells holding it to the new time (and no
+    others), with the values of a whole refresh (to the rounding of the phasor at a run's first node); a second
+    range at the same time refreshes only the nodes not yet at it."""
+    sea = _sea()
+    ranged = field_arrays(sea, rho=RHO, g=G, regions=REGION)
+    whole = field_arrays(sea, rho=RHO, g=G, regions=REGION)
+    t = 21.4
+    field_update(whole, t)
+    assert np.all(whole.node_time[whole.active == 1] == t)
+    nodes = ranged.x_start + ranged.x_step * np.arange(ranged.active.size)
+    field_refresh(ranged, t, -3.0, 2.0)
+    fresh = ranged.node_time == t
+    cells = (nodes >= -3.0 - ranged.x_step) & (nodes <= 2.0 + ranged.x_step) & (ranged.active == 1)
+    np.testing.assert_array_equal(fresh, cells)  # the nodes of the cells [i, i + 1] that hold -3 <= x' <= 2
+    assert np.all(np.isnan(ranged.node_time[~fresh]))
+    sigma = math.sqrt(sea.variance)
+    for name in ("elevation", "head"):
+        got, want = getattr(ranged, name)[fresh], getattr(whole, name)[fresh]
+        assert np.max(np.abs(got - want)) <= ROUND_OFF * sigma
+    before = ranged.head.copy()
+    field_refresh(ranged, t, 1.0, 4.0)
+    again = ranged.node_time == t
+    assert np.all(again[fresh]) and again.sum() > fresh.sum()
+    np.testing.assert_array_equal(ranged.head[fresh], before[fresh])  # the nodes already at t are not redone
+    field_refresh(ranged, t + 0.5, math.nan, math.nan)  # a NaN range refreshes nothing (a diverged body)
+    assert not np.any(ranged.node_time == t + 0.5)
 
 
 def test_points_outside_the_table_fall_back_to_direct_sums() -> None:

@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._jit import kernel
+from ._jit import step_kernel
 from ._pressure import MeshArrays, mesh_pressure_force
 from ._rotation import so3_log_into
 from ._viscous import TERM_ROWS, TermsWork, add_generalised
@@ -77,7 +77,7 @@ class PressureArrays(NamedTuple):
     water: np.ndarray
 
 
-@kernel
+@step_kernel
 def configure_pressure(
     pa: PressureArrays, t: float, rot: np.ndarray, pos: np.ndarray, com0: np.ndarray, cart_start: np.ndarray,
     b_mat: np.ndarray, tw: TermsWork, gen: np.ndarray,
@@ -147,9 +147,14 @@ def no_pressure() -> PressureArrays:
         moments=np.zeros((0, 24)),
         vertex_start=np.zeros(1, dtype=np.int64),
         face_start=np.zeros(1, dtype=np.int64),
+        cluster_start=np.zeros(1, dtype=np.int64),
+        body_cluster_start=np.zeros(1, dtype=np.int64),
+        cluster_box=np.zeros((0, 2, 3)),
+        cluster_moments=np.zeros((0, 24)),
         world=np.zeros((0, 3)),
         height=np.zeros(0),
         head=np.zeros(0),
+        gradient=np.zeros((0, 3)),
         acc=np.zeros(30),
     )
     return PressureArrays(

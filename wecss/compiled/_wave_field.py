@@ -14,12 +14,13 @@ Two ways to evaluate it, chosen when the arrays are made (:func:`field_arrays`):
 
 - **direct sums** (regular waves, a few components): every point costs one complex exponential per component;
 - **a table** (irregular seas): the field of the current time on a grid in (x', z') that covers the region the
-  bodies can reach, refreshed once per new time t (the first evaluation at that t; cost per active node about
-  (4 + 2 n_z) multiply-adds per component), and interpolated at the points at a cost independent of the number of
-  components: cubic Hermite in x' from the values and x'-slopes at the nodes, Chebyshev series (Clenshaw) of
-  degree n_z - 1 in z' on [z_min, 0] (the nodes are the Chebyshev-Lobatto points, z' = 0 among them). The node
-  spacing and n_z are the smallest that keep the bound sum_k |A_k| e_k (e_k: the interpolation error of
-  component k, computed) below ``tolerance`` times the sea's standard deviation, half for x' and half for z'.
+  bodies can reach; at each new time t the nodes of the cells the points of that evaluation need are refreshed
+  (:func:`field_refresh`; cost per node about (4 + 2 n_z) multiply-adds per component), and interpolated at the
+  points at a cost independent of the number of components: cubic Hermite in x' from the values and x'-slopes at
+  the nodes, Chebyshev series (Clenshaw) of degree n_z - 1 in z' on [z_min, 0] (the nodes are the
+  Chebyshev-Lobatto points, z' = 0 among them). The node spacing and n_z are the smallest that keep the bound
+  sum_k |A_k| e_k (e_k: the interpolation error of component k, computed) below ``tolerance`` times the sea's
+  standard deviation, half for x' and half for z'.
   A point outside the table (x' off the active nodes, z' below z_min) is evaluated by direct sums instead and
   sets the flag :data:`OUTSIDE_TABLE` in ``status``.
 
@@ -79,8 +80,8 @@ class FieldArrays(NamedTuple):
         r(t) = (1 - cos(pi t / ramp)) / 2 for 0 <= t < ramp, 0 for t < 0, 1 after.
     phasor : complex ndarray (n,)
         Scratch: r(t) A_k exp(i omega_k t) at ``time[0]``.
-    work : ndarray (3, n)
-        Scratch of the table's refresh (real and imaginary parts of the phasors at a node, the slope weights).
+    work : ndarray (2, n)
+        Scratch of the table's refresh (real and imaginary parts of the phasors at a node).
     time : ndarray (1,)
         The time [s] of ``phasor`` and the table (NaN before the first evaluation).
     status : int64 ndarray (1,)
@@ -95,13 +96,15 @@ class FieldArrays(NamedTuple):
         cos(k x_step) and -sin(k x_step): exp(-i k x_step).
     z_min : float
         The table's lowest stretched height [m] (< 0).
-    profile : ndarray (n_z, n)
-        Chebyshev coefficients of each component's vertical profile Z_k on [z_min, 0] (row m: coefficient m of
-        every component).
+    profile : ndarray (n, n_z)
+        Chebyshev coefficients of each component's vertical profile Z_k on [z_min, 0] (row k: component k).
     elevation, elevation_slope : ndarray (n_x,)
         eta and d eta / dx' at the nodes [m, -].
     head, head_slope : ndarray (n_x, n_z)
         Chebyshev coefficients of the pressure head p / (rho g) and of its x'-slope at the nodes [m, -].
+    node_time : ndarray (n_x,)
+        The time [s] of each node's values (NaN before the first): :func:`field_refresh` refreshes the nodes a
+        step needs, not every active node.
     """
 
     kind: int
@@ -131,6 +134,7 @@ class FieldArrays(NamedTuple):
     elevation_slope: np.ndarray
     head: np.ndarray
     head_slope: np.ndarray
+    node_time: np.ndarray
 
 
 @inline_kernel
@@ -142,11 +146,29 @@ def vertical_profile(k: float, zs: float, depth: float) -> float:
 
 
 @inline_kernel
+def vertical_profile_slope(k: float, zs: float, depth: float) -> float:
+    """dZ/dz' [1/m]: k sinh(k (z' + h)) / cosh(k h), or k exp(k z') in deep water (written without overflow)."""
+    if math.isinf(depth):
+        return k * math.exp(k * zs)
+    return k * math.exp(k * zs) * (1.0 - math.exp(-2.0 * k * (zs + depth))) / (1.0 + math.exp(-2.0 * k * depth))
+
+
+@inline_kernel
 def stretched_height(depth: float, z: float, eta: float) -> float:
     """Wheeler's stretched height z' = (z - eta) h / (h + eta) in water of depth h, or z - eta in deep water [m]."""
     if math.isinf(depth):
         return z - eta
     return (z - eta) * depth / (depth + eta)
+
+
+@inline_kernel
+def stretch_slopes(depth: float, z: float, eta: float, eta_slope: float) -> tuple[float, float]:
+    """The derivatives of Wheeler's stretched height z' in x' (at constant z) and in z [-], given eta and its
+    x'-slope d eta / dx'."""
+    if math.isinf(depth):
+        return -eta_slope, 1.0
+    scale = depth / (depth + eta)
+    return -eta_slope * scale * (depth + z) / (depth + eta), scale
 
 
 @inline_kernel
@@ -161,70 +183,151 @@ def ramp_factor(ramp: float, t: float) -> float:
 
 
 @inline_kernel
-def field_update(field: FieldArrays, t: float) -> None:
-    """Bring the phasors (and the table) to time ``t`` [s] unless they are there already (the ramp included)."""
+def field_phasors(field: FieldArrays, t: float) -> None:
+    """Bring the phasors to time ``t`` [s] unless they are there already (the ramp included); the table's nodes
+    keep their times (:func:`field_refresh` brings them on)."""
     if field.kind == CALM or field.time[0] == t:
         return
-    n = field.omega.shape[0]
     r = ramp_factor(field.ramp, t)
-    for k in range(n):
+    for k in range(field.omega.shape[0]):
         phase = field.omega[k] * t
         field.phasor[k] = r * field.amplitude[k] * complex(math.cos(phase), math.sin(phase))
-    if field.kind == TABLE:
-        n_z = field.profile.shape[0]
-        work = field.work  # rows: real and imaginary parts of the phasors at a node, the slope weights
-        for s in range(field.segment_start.shape[0]):
-            i0, i1 = field.segment_start[s], field.segment_end[s]
-            x0 = field.x_start + i0 * field.x_step
-            for k in range(n):
-                phase = -field.wavenumber[k] * x0
-                c = field.phasor[k] * complex(math.cos(phase), math.sin(phase))
-                work[0, k] = c.real
-                work[1, k] = c.imag
-                work[2, k] = field.wavenumber[k] * c.imag  # d/dx' Re[c exp(-i k x')] = k Im[c]
-            for i in range(i0, i1):
-                eta = 0.0
-                slope = 0.0
-                for k in range(n):
-                    eta += work[0, k]
-                    slope += work[2, k]
-                field.elevation[i] = eta
-                field.elevation_slope[i] = slope
-                for m in range(n_z):
-                    value = 0.0
-                    value_slope = 0.0
-                    for k in range(n):
-                        value += work[0, k] * field.profile[m, k]
-                        value_slope += work[2, k] * field.profile[m, k]
-                    field.head[i, m] = value
-                    field.head_slope[i, m] = value_slope
-                for k in range(n):  # one node on: times exp(-i k x_step)
-                    a = work[0, k] * field.step_cos[k] - work[1, k] * field.step_sin[k]
-                    b = work[0, k] * field.step_sin[k] + work[1, k] * field.step_cos[k]
-                    work[0, k] = a
-                    work[1, k] = b
-                    work[2, k] = field.wavenumber[k] * b
     field.time[0] = t
 
 
 @inline_kernel
-def _direct_elevation(phasor: np.ndarray, wavenumber: np.ndarray, xp: float) -> float:
-    eta = 0.0
-    for k in range(phasor.shape[0]):
-        phase = -wavenumber[k] * xp
-        c = phasor[k]
-        eta += c.real * math.cos(phase) - c.imag * math.sin(phase)
-    return eta
+def _refresh_run(
+    phasor: np.ndarray,
+    wavenumber: np.ndarray,
+    profile: np.ndarray,
+    step_cos: np.ndarray,
+    step_sin: np.ndarray,
+    x_start: float,
+    x_step: float,
+    work: np.ndarray,
+    elevation: np.ndarray,
+    elevation_slope: np.ndarray,
+    head: np.ndarray,
+    head_slope: np.ndarray,
+    i0: int,
+    i1: int,
+) -> None:
+    """The table's values at the nodes i0 <= i < i1 from the current phasors: cost (4 + 2 n_z) multiply-adds per
+    node and component, plus one complex exponential per component for the first node."""
+    n = phasor.shape[0]
+    n_z = profile.shape[1]
+    x0 = x_start + i0 * x_step
+    for k in range(n):
+        phase = -wavenumber[k] * x0
+        c = phasor[k] * complex(math.cos(phase), math.sin(phase))
+        work[0, k] = c.real
+        work[1, k] = c.imag
+    for i in range(i0, i1):
+        for m in range(n_z):
+            head[i, m] = 0.0
+            head_slope[i, m] = 0.0
+        eta = 0.0
+        slope = 0.0
+        # components outermost, so that the inner loop over the coefficients is not a reduction (SIMD)
+        for k in range(n):
+            re = work[0, k]
+            im = work[1, k]
+            value_slope = wavenumber[k] * im  # d/dx' Re[c exp(-i k x')] = k Im[c]
+            eta += re
+            slope += value_slope
+            for m in range(n_z):
+                head[i, m] += re * profile[k, m]
+                head_slope[i, m] += value_slope * profile[k, m]
+            # one node on: times exp(-i k x_step)
+            work[0, k] = re * step_cos[k] - im * step_sin[k]
+            work[1, k] = re * step_sin[k] + im * step_cos[k]
+        elevation[i] = eta
+        elevation_slope[i] = slope
 
 
 @inline_kernel
-def _direct_head(phasor: np.ndarray, wavenumber: np.ndarray, depth: float, xp: float, zs: float) -> float:
-    head = 0.0
+def _refresh_nodes(field: FieldArrays, t: float, lo: int, hi: int) -> None:
+    """Refresh the active nodes lo <= i <= hi of the table that are not at time ``t`` (the phasors are)."""
+    i = lo
+    while i <= hi:
+        if field.active[i] == 0 or field.node_time[i] == t:
+            i += 1
+            continue
+        j = i
+        while j <= hi and field.active[j] == 1 and field.node_time[j] != t:
+            field.node_time[j] = t
+            j += 1
+        _refresh_run(
+            field.phasor,
+            field.wavenumber,
+            field.profile,
+            field.step_cos,
+            field.step_sin,
+            field.x_start,
+            field.x_step,
+            field.work,
+            field.elevation,
+            field.elevation_slope,
+            field.head,
+            field.head_slope,
+            i,
+            j,
+        )
+        i = j
+
+
+@inline_kernel
+def field_refresh(field: FieldArrays, t: float, x_low: float, x_high: float) -> None:
+    """Bring the phasors to time ``t`` [s] and, with a table, the active nodes of the cells that hold
+    x_low <= x' <= x_high [m] (finite; only the nodes not at ``t`` already): a step refreshes the nodes its
+    points need."""
+    field_phasors(field, t)
+    if field.kind != TABLE or not x_low <= x_high:  # (NaN: nothing to refresh; the points go to direct sums)
+        return
+    last = field.active.shape[0] - 1
+    u_low = min(max((x_low - field.x_start) / field.x_step, 0.0), float(last))
+    u_high = min(max((x_high - field.x_start) / field.x_step, 0.0), float(last))
+    _refresh_nodes(field, t, int(u_low), min(int(u_high) + 1, last))
+
+
+@inline_kernel
+def field_update(field: FieldArrays, t: float) -> None:
+    """Bring the phasors and, with a table, every active node to time ``t`` [s] (the ramp included)."""
+    field_phasors(field, t)
+    if field.kind == TABLE:
+        _refresh_nodes(field, t, 0, field.active.shape[0] - 1)
+
+
+@inline_kernel
+def _direct_elevation(phasor: np.ndarray, wavenumber: np.ndarray, xp: float) -> tuple[float, float]:
+    eta = 0.0
+    slope = 0.0
     for k in range(phasor.shape[0]):
         phase = -wavenumber[k] * xp
         c = phasor[k]
-        head += (c.real * math.cos(phase) - c.imag * math.sin(phase)) * vertical_profile(wavenumber[k], zs, depth)
-    return head
+        cos, sin = math.cos(phase), math.sin(phase)
+        eta += c.real * cos - c.imag * sin
+        slope += wavenumber[k] * (c.real * sin + c.imag * cos)  # d/dx' Re[c exp(-i k x')] = k Im[c exp(-i k x')]
+    return eta, slope
+
+
+@inline_kernel
+def _direct_head(
+    phasor: np.ndarray, wavenumber: np.ndarray, depth: float, xp: float, zs: float
+) -> tuple[float, float, float]:
+    head = 0.0
+    head_x = 0.0
+    head_z = 0.0
+    for k in range(phasor.shape[0]):
+        phase = -wavenumber[k] * xp
+        c = phasor[k]
+        cos, sin = math.cos(phase), math.sin(phase)
+        re = c.real * cos - c.imag * sin
+        profile = vertical_profile(wavenumber[k], zs, depth)
+        head += re * profile
+        head_x += wavenumber[k] * (c.real * sin + c.imag * cos) * profile
+        head_z += re * vertical_profile_slope(wavenumber[k], zs, depth)
+    return head, head_x, head_z
 
 
 # The helpers below that branch take the field's arrays, not the FieldArrays: an inlined helper with branches that
@@ -245,6 +348,23 @@ def _cell(x_start: float, x_step: float, active: np.ndarray, xp: float) -> tuple
 
 
 @inline_kernel
+def _hermite(s: float, h: float) -> tuple[float, float, float, float, float, float, float, float]:
+    """Cubic Hermite weights at the fraction s of a cell of length h [m] of the values and x'-slopes at its nodes
+    (v0, v0', v1, v1'), and the weights of the same for the x'-derivative [1/m]."""
+    r = 1.0 - s
+    return (
+        (1.0 + 2.0 * s) * r * r,
+        s * r * r * h,
+        s * s * (3.0 - 2.0 * s),
+        -s * s * r * h,
+        6.0 * s * (s - 1.0) / h,
+        r * (1.0 - 3.0 * s),
+        -6.0 * s * (s - 1.0) / h,
+        s * (3.0 * s - 2.0),
+    )
+
+
+@inline_kernel
 def _elevation(
     kind: int,
     phasor: np.ndarray,
@@ -256,28 +376,25 @@ def _elevation(
     elevation_slope: np.ndarray,
     status: np.ndarray,
     xp: float,
-) -> tuple[float, int]:
+) -> tuple[float, float, int]:
     if kind == CALM:
-        return 0.0, 0
+        return 0.0, 0.0, 0
     if kind == DIRECT:
-        return _direct_elevation(phasor, wavenumber, xp), 0
+        eta, slope = _direct_elevation(phasor, wavenumber, xp)
+        return eta, slope, 0
     i, s = _cell(x_start, x_step, active, xp)
     if i < 0:
         status[0] |= OUTSIDE_TABLE
-        return _direct_elevation(phasor, wavenumber, xp), OUTSIDE_TABLE
-    h = x_step
-    r = 1.0 - s
-    h00 = (1.0 + 2.0 * s) * r * r
-    h10 = s * r * r * h
-    h01 = s * s * (3.0 - 2.0 * s)
-    h11 = -s * s * r * h
-    eta = h00 * elevation[i] + h10 * elevation_slope[i] + h01 * elevation[i + 1] + h11 * elevation_slope[i + 1]
-    return eta, 0
+        eta, slope = _direct_elevation(phasor, wavenumber, xp)
+        return eta, slope, OUTSIDE_TABLE
+    h00, h10, h01, h11, d00, d10, d01, d11 = _hermite(s, x_step)
+    v0, s0, v1, s1 = elevation[i], elevation_slope[i], elevation[i + 1], elevation_slope[i + 1]
+    return h00 * v0 + h10 * s0 + h01 * v1 + h11 * s1, d00 * v0 + d10 * s0 + d01 * v1 + d11 * s1, 0
 
 
 @inline_kernel
-def incident_elevation(field: FieldArrays, xp: float) -> tuple[float, int]:
-    """eta at x' [m] (the field at its current time) and flags (OUTSIDE_TABLE or 0)."""
+def incident_elevation(field: FieldArrays, xp: float) -> tuple[float, float, int]:
+    """eta [m] and d eta / dx' [-] at x' (the field at its current time), and flags (OUTSIDE_TABLE or 0)."""
     return _elevation(
         field.kind,
         field.phasor,
@@ -307,37 +424,43 @@ def _head(
     status: np.ndarray,
     xp: float,
     zs: float,
-) -> tuple[float, int]:
+) -> tuple[float, float, float, int]:
     if kind == CALM:
-        return 0.0, 0
+        return 0.0, 0.0, 0.0, 0
     if kind == DIRECT:
-        return _direct_head(phasor, wavenumber, depth, xp, zs), 0
+        value, value_x, value_z = _direct_head(phasor, wavenumber, depth, xp, zs)
+        return value, value_x, value_z, 0
     i, s = _cell(x_start, x_step, active, xp)
     if i < 0 or zs < z_min:
         status[0] |= OUTSIDE_TABLE
-        return _direct_head(phasor, wavenumber, depth, xp, zs), OUTSIDE_TABLE
-    h = x_step
-    r = 1.0 - s
-    h00 = (1.0 + 2.0 * s) * r * r
-    h10 = s * r * r * h
-    h01 = s * s * (3.0 - 2.0 * s)
-    h11 = -s * s * r * h
+        value, value_x, value_z = _direct_head(phasor, wavenumber, depth, xp, zs)
+        return value, value_x, value_z, OUTSIDE_TABLE
+    h00, h10, h01, h11, d00, d10, d01, d11 = _hermite(s, x_step)
     u = 1.0 - 2.0 * zs / z_min  # z' = 0 -> 1, z' = z_min -> -1
-    b1 = 0.0
-    b2 = 0.0
+    # Clenshaw for the series of the value (b), its u-derivative (d) and the series of the x'-slope (e)
+    b1 = b2 = d1 = d2 = e1 = e2 = 0.0
     for m in range(head.shape[1] - 1, 0, -1):
-        c = h00 * head[i, m] + h10 * head_slope[i, m] + h01 * head[i + 1, m] + h11 * head_slope[i + 1, m]
-        b = c + 2.0 * u * b1 - b2
+        v0, s0, v1, s1 = head[i, m], head_slope[i, m], head[i + 1, m], head_slope[i + 1, m]
+        d = 2.0 * b1 + 2.0 * u * d1 - d2
+        d2 = d1
+        d1 = d
+        b = h00 * v0 + h10 * s0 + h01 * v1 + h11 * s1 + 2.0 * u * b1 - b2
         b2 = b1
         b1 = b
-    c0 = h00 * head[i, 0] + h10 * head_slope[i, 0] + h01 * head[i + 1, 0] + h11 * head_slope[i + 1, 0]
-    return c0 + u * b1 - b2, 0
+        e = d00 * v0 + d10 * s0 + d01 * v1 + d11 * s1 + 2.0 * u * e1 - e2
+        e2 = e1
+        e1 = e
+    v0, s0, v1, s1 = head[i, 0], head_slope[i, 0], head[i + 1, 0], head_slope[i + 1, 0]
+    value = h00 * v0 + h10 * s0 + h01 * v1 + h11 * s1 + u * b1 - b2
+    value_x = d00 * v0 + d10 * s0 + d01 * v1 + d11 * s1 + u * e1 - e2
+    value_z = (b1 + u * d1 - d2) * (-2.0 / z_min)
+    return value, value_x, value_z, 0
 
 
 @inline_kernel
-def incident_head(field: FieldArrays, xp: float, zs: float) -> tuple[float, int]:
-    """The pressure head p / (rho g) [m] at x' and stretched height z' <= 0 (the field at its current time),
-    and flags (OUTSIDE_TABLE or 0)."""
+def incident_head(field: FieldArrays, xp: float, zs: float) -> tuple[float, float, float, int]:
+    """The pressure head p / (rho g) [m] at x' and stretched height z' <= 0 (the field at its current time), its
+    partial derivatives in x' (at constant z') and in z' [-], and flags (OUTSIDE_TABLE or 0)."""
     return _head(
         field.kind,
         field.phasor,
@@ -360,7 +483,7 @@ def field_elevation(field: FieldArrays, x: float, y: float, t: float) -> float:
     """Undisturbed elevation eta(x, y, t) [m] (world coordinates x, y [m], time t [s]). A point outside the table
     sets OUTSIDE_TABLE in ``field.status``."""
     field_update(field, t)
-    eta, _ = incident_elevation(field, x * field.cos_direction + y * field.sin_direction)
+    eta, _, _ = incident_elevation(field, x * field.cos_direction + y * field.sin_direction)
     return eta
 
 
@@ -370,10 +493,10 @@ def field_pressure(field: FieldArrays, x: float, y: float, z: float, t: float) -
     the surface. A point outside the table sets OUTSIDE_TABLE in ``field.status``."""
     field_update(field, t)
     xp = x * field.cos_direction + y * field.sin_direction
-    eta, _ = incident_elevation(field, xp)
+    eta, _, _ = incident_elevation(field, xp)
     if z > eta:
         return 0.0
-    head, _ = incident_head(field, xp, stretched_height(field.depth, z, eta))
+    head, _, _, _ = incident_head(field, xp, stretched_height(field.depth, z, eta))
     return field.rho * field.g * head
 
 
@@ -509,7 +632,7 @@ def _arrays(
         g=float(g),
         ramp=float(ramp),
         phasor=np.zeros(n, complex),
-        work=np.zeros((3, n)),
+        work=np.zeros((2, n)),
         time=np.full(1, np.nan),
         status=np.zeros(1, np.int64),
         x_start=float(grid.x_start),
@@ -520,11 +643,12 @@ def _arrays(
         step_cos=np.cos(k * grid.x_step),
         step_sin=-np.sin(k * grid.x_step),
         z_min=float(grid.z_min),
-        profile=np.ascontiguousarray(grid.profile.T, dtype=float),
+        profile=np.ascontiguousarray(grid.profile, dtype=float),
         elevation=np.zeros(n_x),
         elevation_slope=np.zeros(n_x),
         head=np.zeros((n_x, n_z)),
         head_slope=np.zeros((n_x, n_z)),
+        node_time=np.full(n_x, np.nan),
     )
 
 
@@ -645,4 +769,4 @@ def table_size(field: FieldArrays) -> tuple[int, int]:
     """Active x' nodes and z' nodes of a field's table ((0, 0) without one)."""
     if field.kind != TABLE:
         return 0, 0
-    return int(np.sum(field.active)), int(field.profile.shape[0])
+    return int(np.sum(field.active)), int(field.profile.shape[1])
