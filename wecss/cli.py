@@ -24,11 +24,12 @@ import os
 import sys
 import tempfile
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from . import __version__
+from .files import refuse_overwrite
 
 
 def _info(target: str | None) -> int:
@@ -135,7 +136,7 @@ def _structural_modes(args: argparse.Namespace) -> int:
     if args.png:
         png = Path(args.png)
         pictures = {m: png if len(media) == 1 else png.with_name(f"{png.stem}-{m}{png.suffix}") for m in media}
-        check_outputs({f"picture ({m})": (p, ".png") for m, p in pictures.items()}, inputs=[])
+        check_outputs({f"picture ({m})": (p, ".png") for m, p in pictures.items()}, inputs={})
     for medium in media:
         try:
             ds = device.structural_modes(water=medium == "water", model=args.model, n_modes=args.n)
@@ -209,6 +210,8 @@ def _run(
     compress: int = 0,
     float32: bool = False,
 ) -> int:
+    from .compiled import scene_inputs
+    from .netcdf import partial_path
     from .results import plot_summary
     from .sim import Scene, default_scene_path, simulate
     from .sweep import apply_overrides
@@ -217,7 +220,10 @@ def _run(
     scene = apply_overrides(Scene.from_toml(path), overrides)
     out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
     picture = Path(png) if png else out.with_suffix(".png")
-    check_outputs({"result": (out, ".nc"), "picture": (picture, ".png")}, inputs=[path])
+    check_outputs(
+        {"result": (out, ".nc"), "partial result": (partial_path(out), ".nc"), "picture": (picture, ".png")},
+        inputs={"scene file": path, **scene_inputs(scene)},
+    )
     if not quiet:
         print(f"scene {path}", file=sys.stderr)
     # written as the run goes (Beeman, RK4: streamed, memory flat); the series are read back for the plot alone
@@ -280,16 +286,17 @@ def sweep_executor(args: argparse.Namespace) -> dict[str, Any]:
     return {"executor": "sequential"}
 
 
-def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) -> None:
-    """Refuse, before any work, output files that would overwrite an input or each other, that lack their suffix,
-    that name a folder, or whose folder cannot be written.
+def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Mapping[str, Path]) -> None:
+    """Refuse, before any work, output files that would overwrite an input (``inputs``: label to file or folder,
+    ``wecss.files.refuse_overwrite``) or each other, that lack their suffix, that name a folder, or whose folder
+    cannot be written.
 
     Raises
     ------
     ValueError
-        Naming the output, what was received and what is accepted.
+        Naming the output, what was received and what is accepted (for an input: its field and the file).
     """
-    seen: dict[Path, str] = {p.resolve(): "input" for p in inputs}
+    seen: dict[Path, str] = {}
     for label, (path, suffix) in outputs.items():
         if path.suffix.lower() != suffix:
             raise ValueError(f"the {label} file must end in {suffix}; got {str(path)!r}")
@@ -307,13 +314,14 @@ def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) 
                 pass
         except OSError as err:
             raise ValueError(f"cannot write the {label} file in {str(folder)!r}: {err.strerror}") from None
+    refuse_overwrite({f"{label} file": path for label, (path, _) in outputs.items()}, inputs)
 
 
 def _plot(result: str, png: str | None) -> int:
     from .results import open_result, plot_summary
 
     picture = Path(png) if png else Path(result).with_suffix(".png")
-    check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
+    check_outputs({"picture": (picture, ".png")}, inputs={"result file": Path(result)})
     ds = open_result(result)
     if "scene" not in ds.attrs or "time" not in ds.dims:
         raise ValueError(

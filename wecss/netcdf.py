@@ -182,7 +182,7 @@ class AppendingWriter:
     ) -> None:
         self.target = _target(path)
         storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuse bad options before any work
-        self.partial = self.target.with_name(f"{self.target.stem}.partial{self.target.suffix}")
+        self.partial = partial_path(self.target)
         self.length, self.dim, self.compress, self.float32 = length, dim, compress, float32
         self.status_attr = status_attr
         self.rows = 0
@@ -254,6 +254,11 @@ class AppendingWriter:
             self._nc.close()
         self._nc = None
         return self.partial
+
+
+def partial_path(target: Path) -> Path:
+    """The file ``NAME.partial.nc`` an :class:`AppendingWriter` of ``NAME.nc`` writes its parts to."""
+    return target.with_name(f"{target.stem}.partial{target.suffix}")
 
 
 def _target(path: str | os.PathLike[str]) -> Path:
