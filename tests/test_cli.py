@@ -158,3 +158,24 @@ def test_modes_of_a_device_without_flexible_bodies_and_bad_input(capsys: pytest.
     assert "no catalogue device 'm4-999'" in capsys.readouterr().err
     assert main(["modes", "notc-10kw", "--air", "--png", "x.jpg"]) == 2
     assert "must end in .png" in capsys.readouterr().err
+
+
+def test_ctrl_c_in_the_compiled_loop_of_a_statistics_only_run_exits_130_with_one_line(
+    tmp_path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from tests.sim.test_interrupts import numba_interrupt
+    from wecss.sim._beeman import Beeman
+
+    def interrupted(self, prepared, chunk):  # type: ignore[no-untyped-def]
+        raise numba_interrupt()
+
+    monkeypatch.setattr(Beeman, "advance", interrupted)
+    scene = tmp_path / "s.toml"
+    scene.write_text(
+        '[device]\nname = "m4-111"\n[sea]\nduration = "2 Tp"\nramp = 0.0\n[radiation]\nmethod = "none"\n'
+        "[outputs]\nstatistics_only = true\nvariables = []\n"
+    )
+    assert main(["run", str(scene), "-q", "-o", str(tmp_path / "r.nc")]) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith("wecss: interrupted") and not any("Traceback" in line for line in err)
+    assert not (tmp_path / "r.nc").exists()

@@ -10,6 +10,7 @@ import xarray as xr
 
 from ..compiled import CompiledScene, scene_inputs
 from ..control import ControlledScene, Controller, attach_controller, compile_scene
+from ..errors import interrupts_surfaced
 from ..files import refuse_overwrite
 from ..netcdf import partial_path, storage_encoding, write_netcdf
 from ..scene import Scene
@@ -63,6 +64,8 @@ def simulate(
     SimulationDiverged
         If the state becomes non-finite, a hinge passes its bound, the corrector fails, or energy grows in calm
         water; the exception carries the time, step and state.
+    KeyboardInterrupt
+        On Ctrl-C, also inside a compiled kernel (where numba reports it as a SystemError).
     ValueError
         For ``compress`` or ``float32`` without ``path``, or a ``compress`` level outside 0-9.
     wecss.files.OverwriteError
@@ -96,7 +99,9 @@ def simulate(
     runner = controlled.scene.runner
     if path is not None and streamable(controlled):
         return _streamed(controlled, progress, path, compress, float32)
-    ds = build_result(controlled, runner.run(controlled, progress=progress))
+    with interrupts_surfaced():  # Ctrl-C inside a compiled kernel is an interrupt, not a failure of the run
+        record = runner.run(controlled, progress=progress)
+    ds = build_result(controlled, record)
     if path is not None:
         write_netcdf(ds, path, compress=compress, float32=float32)
     return ds
@@ -112,7 +117,8 @@ def _streamed(
 ) -> xr.Dataset:
     stream = ResultStream(controlled, path, compress=compress, float32=float32)
     try:
-        record = controlled.scene.runner.run(controlled, progress=progress, stream=stream)
+        with interrupts_surfaced():
+            record = controlled.scene.runner.run(controlled, progress=progress, stream=stream)
     except BaseException as err:
         stream.stop(err)
         raise
