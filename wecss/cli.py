@@ -30,6 +30,7 @@ from typing import Any
 
 from . import __version__
 from .files import refuse_overwrite
+from .interrupts import Terminated, sigterm_raises
 
 
 def _info(target: str | None) -> int:
@@ -416,8 +417,14 @@ def _silence_stdout() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``wecss`` command; returns the exit status."""
+    """Entry point of the ``wecss`` command; returns the exit status (130 after Ctrl-C, 143 after SIGTERM: the
+    files being written are cleaned up, a streamed result's partial file says it stopped)."""
     args = build_parser().parse_args(argv)
+    with sigterm_raises():
+        return _command(args)
+
+
+def _command(args: argparse.Namespace) -> int:
     try:
         if args.command == "info":
             return _info(args.target)
@@ -443,6 +450,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except RuntimeError as err:  # SimulationDiverged
         print(f"wecss: {type(err).__name__}: {err}", file=sys.stderr)
         return 3
+    except Terminated:
+        print("wecss: terminated (SIGTERM); finished files were kept, no half-written file left", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("wecss: interrupted; files being written were left as they were", file=sys.stderr)
         return 130

@@ -9,7 +9,7 @@ import pytest
 import xarray as xr
 
 from tests.sim.scenes import scene
-from wecss.errors import interrupt_behind
+from wecss.interrupts import Terminated, interrupt_behind, interrupts_surfaced
 from wecss.sim import compile_scene, simulate
 from wecss.sim._beeman import Beeman
 
@@ -84,3 +84,12 @@ def test_the_interrupt_is_found_along_causes_and_contexts():
             raise RuntimeError("raised while handling it")  # noqa: B904 - the context is what is tested
     except RuntimeError as err:
         assert isinstance(interrupt_behind(err), KeyboardInterrupt)
+
+
+def test_a_sigterm_behind_numbas_system_error_stays_a_terminate():
+    with pytest.raises(Terminated, match="SIGTERM"):
+        with interrupts_surfaced():
+            try:
+                raise Terminated("terminated (SIGTERM)")
+            except Terminated as terminated:
+                raise SystemError("CPUDispatcher(<function beeman_chunk>) returned a result") from terminated

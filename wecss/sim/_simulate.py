@@ -10,8 +10,8 @@ import xarray as xr
 
 from ..compiled import CompiledScene, scene_inputs
 from ..control import ControlledScene, Controller, attach_controller, compile_scene
-from ..errors import interrupts_surfaced
 from ..files import refuse_overwrite
+from ..interrupts import interrupts_surfaced
 from ..netcdf import partial_path, storage_encoding, write_netcdf
 from ..scene import Scene
 from ._dataset import build_result

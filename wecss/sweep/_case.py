@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import xarray as xr
 
-from ..errors import interrupt_behind
+from ..interrupts import interrupt_behind
 
 
 @dataclass(frozen=True)
