@@ -62,7 +62,7 @@ def _info(target: str | None) -> int:
         ds = open_result(path)
         print(ds)
         print()
-        print(_summary(ds))
+        print(_partial_summary(ds) if "run_status" in ds.attrs else _summary(ds))
         return 0
     if path.suffix == ".toml" or target in devices.available():
         device = devices.Device.from_spec(path) if path.suffix == ".toml" else devices.load(target)
@@ -162,6 +162,16 @@ def _is_result(path: Path) -> bool:
     from .netcdf import global_attributes
 
     return "scene" in global_attributes(path)
+
+
+def _partial_summary(ds: Any) -> str:
+    """What a partial result file (``NAME.partial.nc``, a streamed run that stopped or is still going) holds."""
+    lines = [f"partial result: {ds.attrs['run_status']}"]
+    if "time" in ds.dims and ds.sizes["time"]:
+        time = ds["time"].values
+        lines.append(f"{ds.sizes['time']} saved steps, t = {float(time[0]):.6g} to {float(time[-1]):.6g} s")
+    lines.append("the statistics, the solver's attributes and the summary are written when a run finishes")
+    return "\n".join(lines)
 
 
 def _summary(ds: Any) -> str:

@@ -255,3 +255,11 @@ def test_a_case_interrupted_in_a_sequential_sweep_is_not_done_never_failed_and_a
     resumed = run_sweep(sweep, tmp_path, progress=None)
     assert list(resumed.status.values) == ["done", "done", "done"]
     assert json.loads(resumed.attrs["sweep_run"])["ran"] == 2
+
+
+def test_a_sweep_file_with_a_utf8_byte_order_mark_is_read(tmp_path: Path) -> None:
+    """Issue 31: a sweep file saved by an editor that writes a byte-order mark was refused as invalid TOML."""
+    plain = _sweep_file(tmp_path, [1.0, 1.2])
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
+    assert Sweep.from_toml(bom).cases == Sweep.from_toml(plain).cases

@@ -61,6 +61,7 @@ from pathlib import Path
 from typing import Any
 
 from ..multibody import ActuatorPTO, Body, BodyDrag, Joint, JointPTO, Mooring, MorisonElement, Multibody
+from ..tomlfile import read_toml
 
 _TOP_KEYS = {
     "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
@@ -104,8 +105,7 @@ def read_spec(source: str | Path | Mapping[str, Any]) -> tuple[dict[str, Any], P
     if not path.is_file():
         raise FileNotFoundError(f"no device spec at {str(path)!r}")
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh), path.parent
+        return read_toml(path), path.parent
     except tomllib.TOMLDecodeError as err:
         raise DeviceSpecError(f"{path}: {err}") from None
 
