@@ -15,6 +15,9 @@ each mode's strain and kinetic energy; ``--png FILE`` plots the mode shapes.
 ``wecss sweep SWEEP.toml -o FOLDER`` runs a sweep (``wecss.sweep``): in this process, in a pool of processes
 (``--processes N``), or on Dask (``--dask [--workers N]``, ``--scheduler tcp://...``); started again it resumes;
 ``--retry-failed`` runs the failed cases again.
+
+Exit status: 0 done, 1 a sweep with failed cases, 2 bad input (one line, no traceback; also an output that would
+overwrite an input of the run), 3 a diverged run, 130 after Ctrl-C, 143 after SIGTERM.
 """
 
 from __future__ import annotations

@@ -4,7 +4,8 @@ file per case written atomically by this process, resumable, failures recorded, 
 The folder of a sweep holds ``sweep.json`` (the sweep, checked on resume), ``<case>.nc`` per finished case,
 ``<case>.failed.json`` per failed case (its error) and ``sweep.log``. A case counts as finished only when its file
 exists, and files appear only complete (``wecss.netcdf.write_netcdf``), so a sweep killed at any point and started
-again runs exactly the cases that have no file.
+again runs exactly the cases that have no file. An interrupt (Ctrl-C, SIGTERM under the command) is no failure: it
+stops the sweep, the cases being computed stay pending and the finished ones are kept.
 """
 
 from __future__ import annotations
