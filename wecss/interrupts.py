@@ -87,7 +87,8 @@ def interrupts_held() -> Iterator[list[int]]:
     def record(signum: int, frame: object) -> None:
         came.append(signum)
 
-    held = [signum for signum in HELD if signal.getsignal(signum) is not signal.SIG_IGN]
+    # a handler installed outside Python (None) could not be put back: such signals are left alone, as ignored ones
+    held = [signum for signum in HELD if signal.getsignal(signum) not in (signal.SIG_IGN, None)]
     previous = {signum: signal.signal(signum, record) for signum in held}
     try:
         yield came
