@@ -156,3 +156,12 @@ def test_the_guard_names_the_output_the_field_and_the_file(tmp_path):
 
 def _never(*args, **kwargs):  # type: ignore[no-untyped-def]
     raise AssertionError("the scene was compiled: the output must be refused before any work")
+
+
+def test_simulate_refuses_a_path_among_the_data_shipped_with_wecss(tmp_path):
+    shipped = DATA_DIR / "m4-111.nc"  # the catalogue device's own database
+    before = _bytes(shipped)
+    scene = Scene.from_dict({"device": {"name": "m4-111"}, "sea": SHORT})
+    with pytest.raises(OverwriteError, match=r"data shipped with wecss"):
+        simulate(scene, path=shipped)
+    assert _bytes(shipped) == before

@@ -467,7 +467,7 @@ def _command(args: argparse.Namespace) -> int:
         print("wecss: terminated (SIGTERM); finished files were kept, no half-written file left", file=sys.stderr)
         return 143
     except KeyboardInterrupt:
-        print("wecss: interrupted; files being written were left as they were", file=sys.stderr)
+        print("wecss: interrupted; finished files were kept, no half-written file left", file=sys.stderr)
         return 130
     return 0  # pragma: no cover - argparse rejects unknown commands
 

@@ -9,6 +9,9 @@ from ..devices import spec_inputs
 from ..radiation import SHIPPED_FITS_DIR, cache_dir
 from ..scene import Scene
 
+SHIPPED_DATA_DIR = SHIPPED_FITS_DIR.parent
+"""The package's data folder (``wecss/data``): the catalogue's specs and databases, the shipped fits and scenes."""
+
 SEA_FILES = {"elevation": "measured elevation record", "tabulated": "tabulated spectrum"}
 """What ``sea.file`` holds, by ``sea.kind``."""
 
@@ -26,12 +29,12 @@ def device_inputs(name: str, hydro: str | None) -> dict[str, Path]:
 
 def scene_inputs(scene: Scene) -> dict[str, Path]:
     """Every file and folder a run of ``scene`` reads, under the field that names it: the device spec and the files
-    it names, the database, ``sea.file``, and the radiation-fit cache folders (the user's and the shipped fits'),
-    inside which no result belongs."""
+    it names, the database, ``sea.file``, the user's radiation-fit cache folder and the data shipped with wecss
+    (catalogue devices' specs and databases, fits), inside which no result belongs."""
     files = device_inputs(scene.device.name, scene.device.hydro)
     if scene.sea.file is not None:
         what = SEA_FILES.get(scene.sea.kind, "sea file")
         files[f"{what} (sea.file)"] = Path(scene.sea.file).resolve()
     files["radiation-fit cache folder ($WECSS_CACHE_DIR/radiation)"] = cache_dir()
-    files["folder of the shipped radiation fits"] = SHIPPED_FITS_DIR
+    files["data shipped with wecss (catalogue specs, databases, fits)"] = SHIPPED_DATA_DIR
     return files
