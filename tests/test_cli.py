@@ -158,3 +158,52 @@ def test_modes_of_a_device_without_flexible_bodies_and_bad_input(capsys: pytest.
     assert "no catalogue device 'm4-999'" in capsys.readouterr().err
     assert main(["modes", "notc-10kw", "--air", "--png", "x.jpg"]) == 2
     assert "must end in .png" in capsys.readouterr().err
+
+
+def test_ctrl_c_in_the_compiled_loop_of_a_statistics_only_run_exits_130_with_one_line(
+    tmp_path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from tests.sim.test_interrupts import numba_interrupt
+    from wecss.sim._beeman import Beeman
+
+    def interrupted(self, prepared, chunk):  # type: ignore[no-untyped-def]
+        raise numba_interrupt()
+
+    monkeypatch.setattr(Beeman, "advance", interrupted)
+    scene = tmp_path / "s.toml"
+    scene.write_text(
+        '[device]\nname = "m4-111"\n[sea]\nduration = "2 Tp"\nramp = 0.0\n[radiation]\nmethod = "none"\n'
+        "[outputs]\nstatistics_only = true\nvariables = []\n"
+    )
+    assert main(["run", str(scene), "-q", "-o", str(tmp_path / "r.nc")]) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith("wecss: interrupted") and not any("Traceback" in line for line in err)
+    assert not (tmp_path / "r.nc").exists()
+
+
+def test_info_of_a_partial_result_reports_how_far_it_got(
+    tmp_path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Issue 31: ``wecss info`` on a ``.partial.nc`` ended in a TypeError (no solver attributes yet)."""
+    import wecss.sim._fixed_step as fixed_step
+    import wecss.sim._stream as stream_module
+    from wecss.sim import simulate
+
+    monkeypatch.setattr(fixed_step, "CHUNK_STEPS", 100)  # parts of about 100 steps: a short run is written in many
+    monkeypatch.setattr(fixed_step, "STREAM_STEPS", 100)
+    add = stream_module.ResultStream.add
+    parts: list[int] = []
+
+    def interrupt_second(self, part):  # type: ignore[no-untyped-def]
+        parts.append(part.time.size)
+        if len(parts) == 2:
+            raise KeyboardInterrupt
+        add(self, part)
+
+    monkeypatch.setattr(stream_module.ResultStream, "add", interrupt_second)
+    with pytest.raises(KeyboardInterrupt):
+        simulate(_small_scene(tmp_path), path=tmp_path / "r.nc")
+    assert main(["info", str(tmp_path / "r.partial.nc")]) == 0
+    out = capsys.readouterr().out
+    assert f"partial result: stopped after {parts[0]} of" in out and out.rstrip().endswith("when a run finishes")
+    assert f"{parts[0]} saved steps, t = 0 to" in out

@@ -130,3 +130,60 @@ def test_the_tutorial_scene_and_spec_blocks_are_valid():
     scene["device"]["hydro"] = str(wamit)
     parsed = Scene.from_dict(scene)
     assert parsed.device.name == "wavestar" and parsed.radiation.body_to_body
+
+
+@pytest.mark.skipif(os.name != "posix", reason="signals")
+def test_sigterm_during_a_whole_file_write_leaves_the_previous_file_and_no_temporary(tmp_path):
+    target = tmp_path / "r.nc"
+    write_netcdf(xr.Dataset({"y": ("t", np.arange(3.0))}), target)
+    proc = subprocess.Popen([sys.executable, "-c", WRITER, str(target)], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stdout.readline().strip() == "writing"
+    time.sleep(0.3)  # inside to_netcdf: 190 MB take about a second
+    proc.send_signal(signal.SIGTERM)
+    try:
+        proc.wait(timeout=60)
+    finally:
+        proc.kill()
+    assert proc.returncode == -signal.SIGTERM  # the default action, after the clean-up
+    np.testing.assert_array_equal(read_netcdf(target).y.values, np.arange(3.0))
+    assert list(tmp_path.glob(".r.nc.*")) == []
+
+
+def test_a_stale_temporary_of_a_killed_whole_file_write_is_removed_by_the_next_streamed_run(tmp_path):
+    from wecss.sim import simulate
+
+    stale = tmp_path / ".r.nc.999999999.abc.tmp"  # a whole-file write of r.nc killed (SIGKILL): no such process
+    stale.write_bytes(b"\x89HDF\r\n\x1a\n half a file")
+    scene = tmp_path / "s.toml"
+    scene.write_text('[sea]\nduration = "2 Tp"\nramp = 0.0\n[outputs]\nvariables = ["pto"]\n')
+    with simulate(scene, path=tmp_path / "r.nc") as ds:  # streamed
+        assert "pto_power" in ds
+    assert not stale.exists()
+
+
+@pytest.mark.skipif(os.name != "posix", reason="signals")
+def test_sigterm_during_a_streamed_run_marks_its_partial_file_and_exits_143(tmp_path):
+    scene = tmp_path / "long.toml"
+    scene.write_text(  # far longer than the test waits; few wave components (d_omega)
+        '[device]\nname = "m4-111"\n[sea]\nduration = "20000 Tp"\nramp = 0.0\nd_omega = 0.05\n'
+        '[radiation]\nmethod = "none"\n[outputs]\nvariables = ["pto"]\nevery = 10\n'
+    )
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    command = [sys.executable, "-m", "wecss.cli", "run", str(scene), "-q", "-o", str(tmp_path / "long.nc")]
+    proc = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    partial = tmp_path / "long.partial.nc"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None and not partial.exists():
+        time.sleep(0.05)
+    assert proc.poll() is None, "the run must still be going"
+    proc.send_signal(signal.SIGTERM)
+    try:
+        _, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 143, err
+    assert "terminated (SIGTERM)" in err and "Traceback" not in err
+    with xr.open_dataset(partial) as ds:
+        status = ds.attrs["run_status"]
+    assert status.startswith("stopped after") and status.endswith("terminated (SIGTERM)")
+    assert not (tmp_path / "long.nc").exists() and not list(tmp_path.glob(".*.tmp"))

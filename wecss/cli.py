@@ -15,6 +15,9 @@ each mode's strain and kinetic energy; ``--png FILE`` plots the mode shapes.
 ``wecss sweep SWEEP.toml -o FOLDER`` runs a sweep (``wecss.sweep``): in this process, in a pool of processes
 (``--processes N``), or on Dask (``--dask [--workers N]``, ``--scheduler tcp://...``); started again it resumes;
 ``--retry-failed`` runs the failed cases again.
+
+Exit status: 0 done, 1 a sweep with failed cases, 2 bad input (one line, no traceback; also an output that would
+overwrite an input of the run), 3 a diverged run, 130 after Ctrl-C, 143 after SIGTERM.
 """
 
 from __future__ import annotations
@@ -24,11 +27,13 @@ import os
 import sys
 import tempfile
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from . import __version__
+from .files import refuse_overwrite
+from .interrupts import Terminated, sigterm_raises
 
 
 def _info(target: str | None) -> int:
@@ -60,7 +65,7 @@ def _info(target: str | None) -> int:
         ds = open_result(path)
         print(ds)
         print()
-        print(_summary(ds))
+        print(_partial_summary(ds) if "run_status" in ds.attrs else _summary(ds))
         return 0
     if path.suffix == ".toml" or target in devices.available():
         device = devices.Device.from_spec(path) if path.suffix == ".toml" else devices.load(target)
@@ -135,7 +140,7 @@ def _structural_modes(args: argparse.Namespace) -> int:
     if args.png:
         png = Path(args.png)
         pictures = {m: png if len(media) == 1 else png.with_name(f"{png.stem}-{m}{png.suffix}") for m in media}
-        check_outputs({f"picture ({m})": (p, ".png") for m, p in pictures.items()}, inputs=[])
+        check_outputs({f"picture ({m})": (p, ".png") for m, p in pictures.items()}, inputs={})
     for medium in media:
         try:
             ds = device.structural_modes(water=medium == "water", model=args.model, n_modes=args.n)
@@ -160,6 +165,16 @@ def _is_result(path: Path) -> bool:
     from .netcdf import global_attributes
 
     return "scene" in global_attributes(path)
+
+
+def _partial_summary(ds: Any) -> str:
+    """What a partial result file (``NAME.partial.nc``, a streamed run that stopped or is still going) holds."""
+    lines = [f"partial result: {ds.attrs['run_status']}"]
+    if "time" in ds.dims and ds.sizes["time"]:
+        time = ds["time"].values
+        lines.append(f"{ds.sizes['time']} saved steps, t = {float(time[0]):.6g} to {float(time[-1]):.6g} s")
+    lines.append("the statistics, the solver's attributes and the summary are written when a run finishes")
+    return "\n".join(lines)
 
 
 def _summary(ds: Any) -> str:
@@ -209,6 +224,8 @@ def _run(
     compress: int = 0,
     float32: bool = False,
 ) -> int:
+    from .compiled import scene_inputs
+    from .netcdf import partial_path
     from .results import plot_summary
     from .sim import Scene, default_scene_path, simulate
     from .sweep import apply_overrides
@@ -217,7 +234,10 @@ def _run(
     scene = apply_overrides(Scene.from_toml(path), overrides)
     out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
     picture = Path(png) if png else out.with_suffix(".png")
-    check_outputs({"result": (out, ".nc"), "picture": (picture, ".png")}, inputs=[path])
+    check_outputs(
+        {"result": (out, ".nc"), "partial result": (partial_path(out), ".nc"), "picture": (picture, ".png")},
+        inputs={"scene file": path, **scene_inputs(scene)},
+    )
     if not quiet:
         print(f"scene {path}", file=sys.stderr)
     # written as the run goes (Beeman, RK4: streamed, memory flat); the series are read back for the plot alone
@@ -280,16 +300,17 @@ def sweep_executor(args: argparse.Namespace) -> dict[str, Any]:
     return {"executor": "sequential"}
 
 
-def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) -> None:
-    """Refuse, before any work, output files that would overwrite an input or each other, that lack their suffix,
-    that name a folder, or whose folder cannot be written.
+def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Mapping[str, Path]) -> None:
+    """Refuse, before any work, output files that would overwrite an input (``inputs``: label to file or folder,
+    ``wecss.files.refuse_overwrite``) or each other, that lack their suffix, that name a folder, or whose folder
+    cannot be written.
 
     Raises
     ------
     ValueError
-        Naming the output, what was received and what is accepted.
+        Naming the output, what was received and what is accepted (for an input: its field and the file).
     """
-    seen: dict[Path, str] = {p.resolve(): "input" for p in inputs}
+    seen: dict[Path, str] = {}
     for label, (path, suffix) in outputs.items():
         if path.suffix.lower() != suffix:
             raise ValueError(f"the {label} file must end in {suffix}; got {str(path)!r}")
@@ -307,13 +328,14 @@ def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Sequence[Path]) 
                 pass
         except OSError as err:
             raise ValueError(f"cannot write the {label} file in {str(folder)!r}: {err.strerror}") from None
+    refuse_overwrite({f"{label} file": path for label, (path, _) in outputs.items()}, inputs)
 
 
 def _plot(result: str, png: str | None) -> int:
     from .results import open_result, plot_summary
 
     picture = Path(png) if png else Path(result).with_suffix(".png")
-    check_outputs({"picture": (picture, ".png")}, inputs=[Path(result)])
+    check_outputs({"picture": (picture, ".png")}, inputs={"result file": Path(result)})
     ds = open_result(result)
     if "scene" not in ds.attrs or "time" not in ds.dims:
         raise ValueError(
@@ -408,8 +430,14 @@ def _silence_stdout() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``wecss`` command; returns the exit status."""
+    """Entry point of the ``wecss`` command; returns the exit status (130 after Ctrl-C, 143 after SIGTERM: the
+    files being written are cleaned up, a streamed result's partial file says it stopped)."""
     args = build_parser().parse_args(argv)
+    with sigterm_raises():
+        return _command(args)
+
+
+def _command(args: argparse.Namespace) -> int:
     try:
         if args.command == "info":
             return _info(args.target)
@@ -435,8 +463,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except RuntimeError as err:  # SimulationDiverged
         print(f"wecss: {type(err).__name__}: {err}", file=sys.stderr)
         return 3
+    except Terminated:
+        print("wecss: terminated (SIGTERM); finished files were kept, no half-written file left", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
-        print("wecss: interrupted; files being written were left as they were", file=sys.stderr)
+        print("wecss: interrupted; finished files were kept, no half-written file left", file=sys.stderr)
         return 130
     return 0  # pragma: no cover - argparse rejects unknown commands
 

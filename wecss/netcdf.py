@@ -3,24 +3,24 @@
 netCDF has no complex type, so complex variables are written with a trailing ``complex`` dimension
 holding ``[re, im]`` and merged back on read. Writes go to a temporary file in the target folder
 that is renamed over the target only when complete, so a failed write never leaves a half file. An interrupt
-(Ctrl-C) during a write is held until the temporary file is closed, then the temporary file is removed, the
-previous file left as it was and the interrupt raised (the netCDF library's file lock would otherwise hang the
-process); temporary files left by killed processes are removed by the next write to the same target.
+(Ctrl-C, SIGTERM) during a write is held until the temporary file is closed, then the temporary file is removed,
+the previous file left as it was and the interrupt raised (``wecss.interrupts.interrupts_held``; the netCDF
+library's file lock would otherwise hang the process); temporary files left by killed processes are removed by the
+next write to the same target, whole or part by part.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
-import signal
 import tempfile
-import threading
-from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
+
+from .interrupts import interrupts_held
 
 if TYPE_CHECKING:
     import netCDF4
@@ -123,7 +123,7 @@ def write_netcdf(
     # otherwise keep its unlimited time dimension, whose default chunks are one row each once re-encoded
     split.encoding = {k: v for k, v in split.encoding.items() if k != "unlimited_dims"}
     encoding = storage_encoding(split, compress=compress, float32=float32) or None
-    with _interrupts_held() as interrupted:
+    with interrupts_held() as interrupted:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.", suffix=".tmp", dir=folder)
         os.close(fd)
         try:
@@ -182,7 +182,8 @@ class AppendingWriter:
     ) -> None:
         self.target = _target(path)
         storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuse bad options before any work
-        self.partial = self.target.with_name(f"{self.target.stem}.partial{self.target.suffix}")
+        self.partial = partial_path(self.target)
+        remove_stale_temporaries(self.target)  # left by a whole-file write to the same target that was killed
         self.length, self.dim, self.compress, self.float32 = length, dim, compress, float32
         self.status_attr = status_attr
         self.rows = 0
@@ -191,7 +192,7 @@ class AppendingWriter:
     def append(self, part: xr.Dataset, status: str) -> None:
         """Write the next rows: ``part``'s variables on the dimension (the first part also writes every other
         variable, the coordinates and the global attributes of ``part``)."""
-        with _interrupts_held():
+        with interrupts_held():
             if self._nc is None:
                 self._create(part, status)
             else:
@@ -230,7 +231,7 @@ class AppendingWriter:
         if self._nc is None:
             raise RuntimeError(f"nothing was written to {str(self.partial)!r}")
         split = split_complex(rest)
-        with _interrupts_held():
+        with interrupts_held():
             for name in self._nc.ncattrs():  # the parts' attributes give way to the whole's (in its order)
                 self._nc.delncattr(name)
             self._nc.close()
@@ -249,11 +250,16 @@ class AppendingWriter:
         part was written)."""
         if self._nc is None:
             return None
-        with _interrupts_held():
+        with interrupts_held():
             self._nc.setncattr(self.status_attr, status)
             self._nc.close()
         self._nc = None
         return self.partial
+
+
+def partial_path(target: Path) -> Path:
+    """The file ``NAME.partial.nc`` an :class:`AppendingWriter` of ``NAME.nc`` writes its parts to."""
+    return target.with_name(f"{target.stem}.partial{target.suffix}")
 
 
 def _target(path: str | os.PathLike[str]) -> Path:
@@ -289,27 +295,6 @@ def _alive(pid: int) -> bool:
     except PermissionError:
         return True
     return True
-
-
-@contextlib.contextmanager
-def _interrupts_held() -> Iterator[list[bool]]:
-    """Record SIGINT (Ctrl-C) for the duration instead of raising it (on the main thread, where Python handles
-    signals); yields a list that is true once one came, and raises KeyboardInterrupt on leaving if one did."""
-    interrupted: list[bool] = []
-    if threading.current_thread() is not threading.main_thread():
-        yield interrupted
-        return
-
-    def record(signum: int, frame: object) -> None:
-        interrupted.append(True)
-
-    previous = signal.signal(signal.SIGINT, record)
-    try:
-        yield interrupted
-    finally:
-        signal.signal(signal.SIGINT, previous)
-    if interrupted:
-        raise KeyboardInterrupt
 
 
 class NetCDFFileError(ValueError):

@@ -108,3 +108,12 @@ def test_spec_round_trips_through_toml(tmp_path: Path) -> None:
     a, b = Device.from_spec(source), Device.from_spec(copy)
     assert a.model.velocity_names == b.model.velocity_names
     assert a.spec == b.spec
+
+
+def test_a_spec_file_with_a_utf8_byte_order_mark_is_read(tmp_path: Path) -> None:
+    """Issue 31: a spec saved by an editor that writes a byte-order mark was refused as invalid TOML."""
+    shipped = Path(wecss.devices.__file__).resolve().parent.parent / "data" / "devices" / "m4-111.toml"
+    spec = tmp_path / "bom.toml"
+    spec.write_bytes(b"\xef\xbb\xbf" + shipped.read_bytes())
+    device = Device.from_spec(spec)
+    assert device.name == "m4-111" and device.info() == Device.from_spec(shipped).info()

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from tests.sim.scenes import scene
+from wecss.netcdf import global_attributes
 from wecss.scene import resolve_time
 from wecss.sim import Scene, SceneError, compile_scene, default_scene_path, simulate
 
@@ -173,7 +174,8 @@ def test_a_coarse_step_is_noted_in_the_result():
         ("sea", {"height": "big"}, r"sea\.height must be a number; got 'big' \(str\)"),
         ("sea", {"gamma": "x"}, r"sea\.gamma must be a number; got 'x'"),
         ("sea", {"direction": "north"}, r"sea\.direction must be a number; got 'north'"),
-        ("sea", {"seed": -1}, r"sea\.seed must be a non-negative integer; got -1"),
+        ("sea", {"seed": -1}, r"sea\.seed must be an integer from 0 to 2\*\*64 - 1 .*; got -1"),
+        ("sea", {"seed": 2**64}, r"sea\.seed must be an integer from 0 to 2\*\*64 - 1 .*; got 18446744073709551616"),
         ("sea", {"seed": True}, r"sea\.seed must be int; got True"),
         ("sea", {"d_omega": math.inf}, r"sea\.d_omega must be positive and finite \[rad/s\] \(or absent\); got inf"),
         ("sea", {"period": math.inf}, r"sea\.period must be positive and finite \[s\] for jonswap waves; got inf"),
@@ -208,3 +210,24 @@ def test_wrong_objects_passed_to_the_entry_points_name_what_is_accepted():
             compile_scene(bad)  # type: ignore[arg-type]
         with pytest.raises(TypeError, match=r"linearize takes a CompiledScene .*; got"):
             linearize(bad)  # type: ignore[arg-type]
+
+
+def test_a_seed_beyond_64_bits_is_refused_at_input_and_the_largest_is_stored(tmp_path):
+    """Issue 31: a seed of 2**64 ran to the end, then writing the result failed and nothing was saved."""
+    with pytest.raises(SceneError, match=r"sea\.seed must be an integer from 0 to 2\*\*64 - 1"):
+        scene(sea={"seed": 2**64})
+    largest = scene(
+        sea={"seed": 2**64 - 1, "duration": 10.0, "ramp": 0.0},
+        solver={"method": "frequency"},
+        outputs={"statistics_only": True, "variables": []},
+    )
+    simulate(largest, path=tmp_path / "r.nc")
+    assert global_attributes(tmp_path / "r.nc")["seed"] == 2**64 - 1
+
+
+def test_a_scene_file_with_a_utf8_byte_order_mark_is_read(tmp_path):
+    """Issue 31: a scene saved by an editor that writes a byte-order mark was refused as invalid TOML."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + b'[device]\nname = "m4-111"\n[sea]\nheight = 0.05\n')
+    sc = Scene.from_toml(path)
+    assert sc.device.name == "m4-111" and sc.sea.height == 0.05

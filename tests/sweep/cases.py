@@ -19,3 +19,33 @@ def statistics(ds: xr.Dataset) -> xr.Dataset:
     out = ds.drop_vars(TIMINGS)
     out.attrs = {k: v for k, v in ds.attrs.items() if k != "sweep_run"}
     return out
+
+
+PIDS_ENV = "WECSS_TEST_SWEEP_FOLDER"
+"""Environment variable: the folder where :func:`interrupting_work` leaves its markers."""
+
+
+def interrupting_work(scene_json: str) -> object:
+    """A worker's case for the pool's Ctrl-C test: periods below 1.3 s finish at once; the others write their process
+    id and sleep, and the case of period 1.4 s first sends SIGINT to the parent once the parent has handed the fast
+    cases to ``finish`` (markers ``done-<period>``), as Ctrl-C in the terminal would."""
+    import json
+    import os
+    import signal
+    import time
+    from pathlib import Path
+
+    from wecss.sweep._case import CaseOutcome
+
+    folder = Path(os.environ[PIDS_ENV])
+    period = json.loads(scene_json)["sea"]["period"]
+    if period < 1.3:
+        return CaseOutcome(None, f"fast {period}", 0.0, 0.0)
+    (folder / f"pid-{os.getpid()}").write_text(str(period))
+    if period == 1.4:
+        deadline = time.monotonic() + 60
+        while not all((folder / f"done-{p}").exists() for p in (1.0, 1.2)) and time.monotonic() < deadline:
+            time.sleep(0.01)
+        os.kill(os.getppid(), signal.SIGINT)
+    time.sleep(60)  # a long case: stopped by the parent, or the test fails on a live worker
+    return CaseOutcome(None, "slow", 0.0, 0.0)

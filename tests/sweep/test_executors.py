@@ -5,6 +5,7 @@ flags map onto the executors."""
 from __future__ import annotations
 
 import inspect
+import os
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +15,7 @@ import xarray as xr
 from wecss.cli import build_parser, main, sweep_executor
 from wecss.sweep import EXECUTORS, Sweep, run_sweep
 
-from .cases import BASE, statistics
+from .cases import BASE, interrupting_work, statistics
 
 
 @pytest.fixture(scope="module")
@@ -175,3 +176,30 @@ def test_the_command_takes_one_executor_flag(capsys: pytest.CaptureFixture[str])
         build_parser().parse_args(["sweep", "matrix.toml", "--processes", "2", "--dask"])
     assert stopped.value.code == 2
     assert "not allowed with argument --processes" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(os.name != "posix", reason="signals")
+def test_ctrl_c_stops_a_process_pool_at_once_and_keeps_every_finished_case(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from wecss.sweep._executors import _run_pool
+
+    from .cases import PIDS_ENV
+
+    monkeypatch.setenv(PIDS_ENV, str(tmp_path))
+    sweep = Sweep(BASE, (("sea.period", (1.0, 1.2, 1.4, 1.6, 1.8)),))
+    finished: list[float] = []
+
+    def finish(case, outcome):  # type: ignore[no-untyped-def]
+        period = dict(case.values)["sea.period"]
+        finished.append(period)
+        (tmp_path / f"done-{period}").write_text(outcome.error)
+
+    with pytest.raises(KeyboardInterrupt):
+        _run_pool(list(sweep.cases), finish, 2, work=interrupting_work)
+    assert sorted(finished) == [1.0, 1.2]  # the finished cases were kept, the long ones not taken as done
+    pids = [int(p.name.split("-")[1]) for p in tmp_path.glob("pid-*")]
+    assert pids, "a long case must have started"
+    for pid in pids:  # the workers were stopped, not left computing
+        with pytest.raises(ProcessLookupError):
+            os.kill(pid, 0)

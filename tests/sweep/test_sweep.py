@@ -226,3 +226,40 @@ def test_progress_in_a_log_prints_a_line_now_and_then_not_per_case() -> None:
     assert len(lines) == 2  # the first case (no line printed before) and the last
     assert lines[-1].endswith("50/50 cases: 49 done, 1 failed, ETA 0s")
     assert "\r" not in log.getvalue()
+
+
+def test_a_case_interrupted_in_a_sequential_sweep_is_not_done_never_failed_and_a_resume_computes_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from tests.sim.test_interrupts import numba_interrupt
+    from wecss.sim._frequency import FrequencyDomain
+
+    sweep = Sweep(BASE, (("sea.period", (1.0, 1.2, 1.4)),))
+    run = FrequencyDomain.run
+    calls: list[int] = []
+
+    def interrupted_second(self, controlled, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(1)
+        if len(calls) == 2:
+            raise numba_interrupt()  # Ctrl-C inside a compiled call, as numba reports it
+        return run(self, controlled, **kwargs)
+
+    monkeypatch.setattr(FrequencyDomain, "run", interrupted_second)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(sweep, tmp_path, progress=None)
+    assert len(calls) == 2  # the sweep stopped: the third case did not run
+    assert [case_status(tmp_path, case) for case in sweep.cases] == ["done", "pending", "pending"]
+    assert "FAILED" not in (tmp_path / "sweep.log").read_text()
+    assert "interrupted after 1 of 3 cases" in (tmp_path / "sweep.log").read_text()
+    monkeypatch.setattr(FrequencyDomain, "run", run)
+    resumed = run_sweep(sweep, tmp_path, progress=None)
+    assert list(resumed.status.values) == ["done", "done", "done"]
+    assert json.loads(resumed.attrs["sweep_run"])["ran"] == 2
+
+
+def test_a_sweep_file_with_a_utf8_byte_order_mark_is_read(tmp_path: Path) -> None:
+    """Issue 31: a sweep file saved by an editor that writes a byte-order mark was refused as invalid TOML."""
+    plain = _sweep_file(tmp_path, [1.0, 1.2])
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
+    assert Sweep.from_toml(bom).cases == Sweep.from_toml(plain).cases

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from .. import waves as wv
-from ..devices import Device, spec_files
+from ..devices import Device
 from ..devices import available as available_devices
 from ..devices import load as load_device
 from ..hydro import HydroData, without_body_interactions
@@ -29,6 +29,7 @@ from ..multibody import HydroCoupling, JointPTO, StaticModel
 from ..radiation import FitSettings, RadiationFit
 from ..scene import Radiation, Scene, SceneError, SeaState
 from ._body_exact import PressureArrays
+from ._inputs import device_inputs
 from ._kernels import integrate_configuration
 from ._plant import Plant, build_plant
 from ._pto_law import pto_gains
@@ -383,15 +384,9 @@ def _stamp(path: Path) -> FileStamp:
 
 
 def _device_sources(name: str, hydro: str | None) -> tuple[FileStamp, ...]:
-    """Stamps of the user's files a device's cached parts are read from: the spec file (with the database file it
-    names) and the database the scene names. A changed, moved or replaced file changes the key, so the cache builds
-    the parts again. Catalogue names stand for the files shipped with wecss."""
-    files: list[Path] = []
-    if name.endswith(".toml") and Path(name).is_file():
-        files.extend(spec_files(name))
-    if hydro is not None and Path(hydro).is_file():
-        files.append(Path(hydro))
-    return tuple(_stamp(f) for f in files)
+    """Stamps of the user's files a device's cached parts are read from (:func:`device_inputs`). A changed, moved or
+    replaced file changes the key, so the cache builds the parts again."""
+    return tuple(_stamp(f) for f in device_inputs(name, hydro).values())
 
 
 @functools.lru_cache(maxsize=PARTS_CACHE_SIZE)

@@ -12,4 +12,5 @@ from ._members import HotSpot as HotSpot
 from ._members import Member as Member
 from ._spec import DeviceSpecError as DeviceSpecError
 from ._spec import spec_files as spec_files
+from ._spec import spec_inputs as spec_inputs
 from ._structural_modes import structural_modes as structural_modes

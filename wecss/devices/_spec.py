@@ -61,6 +61,7 @@ from pathlib import Path
 from typing import Any
 
 from ..multibody import ActuatorPTO, Body, BodyDrag, Joint, JointPTO, Mooring, MorisonElement, Multibody
+from ..tomlfile import read_toml
 
 _TOP_KEYS = {
     "name", "description", "hydro", "hydro_options", "assumptions", "bodies", "joints", "ptos", "members", "moorings",
@@ -104,8 +105,7 @@ def read_spec(source: str | Path | Mapping[str, Any]) -> tuple[dict[str, Any], P
     if not path.is_file():
         raise FileNotFoundError(f"no device spec at {str(path)!r}")
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh), path.parent
+        return read_toml(path), path.parent
     except tomllib.TOMLDecodeError as err:
         raise DeviceSpecError(f"{path}: {err}") from None
 
@@ -118,9 +118,10 @@ def hydro_source(spec: Mapping[str, Any], folder: Path | None) -> str | None:
     return hydro
 
 
-def spec_files(path: str | Path) -> tuple[Path, ...]:
-    """The files a device built from the spec file ``path`` is read from: the spec and, when it names them, its
-    database file and its mesh files (for a cache that must see any change).
+def spec_inputs(path: str | Path) -> dict[str, Path]:
+    """The files a device built from the spec file ``path`` is read from, each under what it is: the spec and, when
+    it names them, its database file (``hydro``) and its mesh files (``meshes[i].stl``, ``meshes[i].geometry``);
+    resolved paths.
 
     Raises
     ------
@@ -131,15 +132,30 @@ def spec_files(path: str | Path) -> tuple[Path, ...]:
     """
     spec, folder = read_spec(path)
     hydro = hydro_source(spec, folder)
-    files = [Path(path).resolve()]
+    files = {"device spec": Path(path).resolve()}
     if hydro is not None and Path(hydro).is_file():
-        files.append(Path(hydro))
-    for entry in spec.get("meshes", []) if isinstance(spec.get("meshes"), list) else []:
+        files["hydrodynamic database named by the device spec (hydro)"] = Path(hydro)
+    meshes = spec.get("meshes", [])
+    for i, entry in enumerate(meshes if isinstance(meshes, list) else []):
         for key in ("stl", "geometry"):
             value = entry.get(key) if isinstance(entry, Mapping) else None
             if isinstance(value, str) and folder is not None and (folder / value).is_file():
-                files.append((folder / value).resolve())
-    return tuple(files)
+                files[f"mesh file of the device spec (meshes[{i}].{key})"] = (folder / value).resolve()
+    return files
+
+
+def spec_files(path: str | Path) -> tuple[Path, ...]:
+    """The files a device built from the spec file ``path`` is read from (:func:`spec_inputs`, for a cache that
+    must see any change).
+
+    Raises
+    ------
+    FileNotFoundError
+        If the spec does not exist.
+    DeviceSpecError
+        If the TOML cannot be parsed.
+    """
+    return tuple(spec_inputs(path).values())
 
 
 def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | ActuatorPTO, ...]]:

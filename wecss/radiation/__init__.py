@@ -2,6 +2,8 @@
 realisation), stability and passivity checks and repair, fit reports."""
 
 from ._cache import SHIPPED_FITS_DIR as SHIPPED_FITS_DIR
+from ._cache import CacheWarning as CacheWarning
+from ._cache import cache_dir as cache_dir
 from ._cache import load_cached_fit as load_cached_fit
 from ._cache import store_fit as store_fit
 from ._convolution import MEMORY_FACTOR as MEMORY_FACTOR

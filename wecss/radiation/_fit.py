@@ -354,7 +354,7 @@ def fit_radiation(
     if key is not None:
         from . import _cache
 
-        _cache.store_fit(key, model, report)
+        _cache.cache_fit(key, model, report)
     return RadiationFit(model, report, passivation, irf)
 
 

@@ -35,6 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from ..outputs import DEFAULT_GROUPS, GROUP_NAMES
+from ..tomlfile import read_toml
 from ._checks import check_choice, check_keys, check_types
 from ._errors import SceneError
 from ._hydrodynamics import Hydrodynamics, Initial
@@ -122,6 +123,10 @@ class DeviceChoice:
             check_types("device", {"hydro": (self.hydro, str)})
 
 
+MAX_SEED: int = 2**64 - 1
+"""Largest ``sea.seed``: results store the seed as an unsigned 64-bit netCDF attribute."""
+
+
 @dataclass(frozen=True)
 class SeaState:
     """The waves.
@@ -141,7 +146,7 @@ class SeaState:
     ramp : float or str
         Length of the cosine ramp at the start [s] or relative ("2 Tp"); 0 for none.
     seed : int
-        Seed of the random phases (numpy Generator).
+        Seed of the random phases (numpy Generator), 0 to 2**64 - 1 (:data:`MAX_SEED`).
     periodic : bool
         Periodic irregular record (frequencies k d_omega, repeat period 2 pi / d_omega).
     d_omega : float or None
@@ -194,8 +199,11 @@ class SeaState:
             "sea",
             {"kind": (self.kind, str), "seed": (self.seed, int), "periodic": (self.periodic, bool)},
         )
-        if self.seed < 0:
-            raise SceneError(f"sea.seed must be a non-negative integer; got {self.seed!r}")
+        if not 0 <= self.seed <= MAX_SEED:
+            raise SceneError(
+                f"sea.seed must be an integer from 0 to 2**64 - 1 (a result file stores it as a 64-bit integer); "
+                f"got {self.seed!r}"
+            )
         duration = self.duration_s
         if self.ramp_s >= duration:
             raise SceneError(f"sea.ramp ({self.ramp!r}) must be shorter than sea.duration ({self.duration!r})")
@@ -564,7 +572,7 @@ class Scene:
         if not path.is_file():
             raise FileNotFoundError(f"no scene file at {str(path)!r}")
         try:
-            data = tomllib.loads(path.read_text())
+            data = read_toml(path)
         except tomllib.TOMLDecodeError as err:
             raise SceneError(f"{path}: not valid TOML: {err}") from None
         except UnicodeDecodeError:

@@ -8,9 +8,11 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..compiled import CompiledScene
+from ..compiled import CompiledScene, scene_inputs
 from ..control import ControlledScene, Controller, attach_controller, compile_scene
-from ..netcdf import storage_encoding, write_netcdf
+from ..files import refuse_overwrite
+from ..interrupts import interrupts_surfaced
+from ..netcdf import partial_path, storage_encoding, write_netcdf
 from ..scene import Scene
 from ._dataset import build_result
 from ._stream import ResultStream, streamable
@@ -62,8 +64,14 @@ def simulate(
     SimulationDiverged
         If the state becomes non-finite, a hinge passes its bound, the corrector fails, or energy grows in calm
         water; the exception carries the time, step and state.
+    KeyboardInterrupt
+        On Ctrl-C, also inside a compiled kernel (where numba reports it as a SystemError).
     ValueError
         For ``compress`` or ``float32`` without ``path``, or a ``compress`` level outside 0-9.
+    wecss.files.OverwriteError
+        (a ValueError) If ``path`` (or its ``.partial.nc``) is an input of the run: the scene file, the device spec
+        or a file it names, the database, ``sea.file``, or inside the radiation-fit cache; checked before the run,
+        nothing is written.
     """
     if path is None and (compress or float32):
         raise ValueError(
@@ -71,8 +79,13 @@ def simulate(
             "(or save the returned Dataset with wecss.results.save)"
         )
     storage_encoding(xr.Dataset(), compress=compress, float32=float32)  # refuses bad options before the run
+    inputs: dict[str, Path] = {}
     if isinstance(scene, str | Path):
+        inputs["scene file"] = Path(scene)
         scene = Scene.from_toml(scene)
+    if path is not None and isinstance(scene, Scene | CompiledScene):  # before any work
+        plain = scene if isinstance(scene, Scene) else scene.scene
+        refuse_overwrite(result_files(path), {**inputs, **scene_inputs(plain)})
     if isinstance(scene, ControlledScene):
         if controller is not None:
             raise ValueError("this compiled scene has a controller already; give the plant (compile_plant) or a scene")
@@ -86,10 +99,17 @@ def simulate(
     runner = controlled.scene.runner
     if path is not None and streamable(controlled):
         return _streamed(controlled, progress, path, compress, float32)
-    ds = build_result(controlled, runner.run(controlled, progress=progress))
+    with interrupts_surfaced():  # Ctrl-C inside a compiled kernel is an interrupt, not a failure of the run
+        record = runner.run(controlled, progress=progress)
+    ds = build_result(controlled, record)
     if path is not None:
         write_netcdf(ds, path, compress=compress, float32=float32)
     return ds
+
+
+def result_files(path: str | os.PathLike[str]) -> dict[str, Path]:
+    """The files ``simulate(..., path=path)`` may write: the result and, when streamed, its partial file."""
+    return {"result file": Path(path), "partial result file": partial_path(Path(path))}
 
 
 def _streamed(
@@ -97,7 +117,8 @@ def _streamed(
 ) -> xr.Dataset:
     stream = ResultStream(controlled, path, compress=compress, float32=float32)
     try:
-        record = controlled.scene.runner.run(controlled, progress=progress, stream=stream)
+        with interrupts_surfaced():
+            record = controlled.scene.runner.run(controlled, progress=progress, stream=stream)
     except BaseException as err:
         stream.stop(err)
         raise

@@ -20,6 +20,7 @@ import xarray as xr
 from ..attributes import apply_attrs
 from ..compiled.kernels import poses
 from ..control import ControlledScene
+from ..interrupts import Terminated
 from ..netcdf import AppendingWriter
 from ..outputs import STREAMED_GROUPS
 from ._dataset import series_variables, statistics_dataset
@@ -95,5 +96,10 @@ class ResultStream:
 
     def stop(self, err: BaseException) -> Path | None:
         """The run stopped with ``err``: the partial file says so (returned; None when nothing was written)."""
-        what = "interrupted" if isinstance(err, KeyboardInterrupt) else f"{type(err).__name__}: {err}"
+        if isinstance(err, Terminated):
+            what = str(err) or "terminated"
+        elif isinstance(err, KeyboardInterrupt):
+            what = "interrupted"
+        else:
+            what = f"{type(err).__name__}: {err}"
         return self.writer.stop(f"stopped after {self.writer.rows} of {self.n_save} saved steps: {what}")

@@ -9,6 +9,8 @@ from dataclasses import dataclass
 
 import xarray as xr
 
+from ..interrupts import interrupt_behind
+
 
 @dataclass(frozen=True)
 class CaseOutcome:
@@ -21,7 +23,8 @@ class CaseOutcome:
 
 
 def run_case(scene_json: str) -> CaseOutcome:
-    """Compile and run one case (in a worker); any exception becomes a recorded failure.
+    """Compile and run one case (in a worker); any exception becomes a recorded failure, but an interrupt
+    (KeyboardInterrupt, also as the cause of another exception) is raised: the case is not done, never failed.
 
     The compiled plant's parts that the case's swept values do not change are cached per process by
     ``wecss.compiled`` (device, hydrodynamic coupling, equilibrium, radiation kernel).
@@ -38,6 +41,8 @@ def run_case(scene_json: str) -> CaseOutcome:
         compiled_at = time.perf_counter()
         ds = simulate(compiled)
     except Exception as err:  # recorded with its traceback; the sweep goes on
+        if interrupt_behind(err) is not None:  # Ctrl-C is no failure of the case: it stays to be done
+            raise KeyboardInterrupt from None
         text = f"{type(err).__name__}: {err}\n" + "".join(traceback.format_exception(err)[-3:])
         return CaseOutcome(None, text, compiled_at - start, time.perf_counter() - compiled_at)
     end = time.perf_counter()

@@ -6,8 +6,9 @@ from __future__ import annotations
 
 import contextlib
 import os
+import signal
 from collections.abc import Callable, Iterator
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from typing import Literal
 
@@ -31,6 +32,9 @@ BLAS_THREADS = {
 """Environment of every worker process: one BLAS thread per worker (the workers share the cores)."""
 
 Finish = Callable[[Case, CaseOutcome], None]
+
+STOP_GRACE_S: float = 10.0
+"""Time [s] a worker process has to end after SIGTERM when a pool is stopped, before it is killed."""
 
 
 def check_executor(executor: object, *, workers: object, scheduler: object) -> None:
@@ -98,17 +102,57 @@ def _pinned_environment() -> Iterator[None]:
                 os.environ[key] = value
 
 
-def _run_pool(todo: list[Case], finish: Finish, processes: int) -> None:
+def ignore_interrupts() -> None:
+    """Initializer of the pool's worker processes: Ctrl-C (SIGINT to the terminal's process group) is the parent's
+    to handle; the parent stops the workers."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _run_pool(todo: list[Case], finish: Finish, processes: int, work: Callable[[str], CaseOutcome] = run_case) -> None:
+    """The cases on a pool of ``processes`` worker processes (``work``: what a worker runs on a case's scene JSON).
+
+    On Ctrl-C (or any error in this process) the queued cases are cancelled and the workers stopped at once (their
+    cases stay to be done), the cases that had finished are handed to ``finish``, and the exception is raised.
+    """
     with _pinned_environment():
-        pool = ProcessPoolExecutor(max_workers=processes, mp_context=get_context("spawn"))
+        pool = ProcessPoolExecutor(
+            max_workers=processes, mp_context=get_context("spawn"), initializer=ignore_interrupts
+        )
+    futures = {pool.submit(work, case.scene.to_json()): case for case in todo}
+    handed: set[Future[CaseOutcome]] = set()
     try:
-        futures = {pool.submit(run_case, case.scene.to_json()): case for case in todo}
         for future in as_completed(futures):
+            handed.add(future)
             finish(futures[future], future.result())
     except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
+        stop_workers(pool)
+        for future, case in futures.items():  # finished before the workers were stopped: kept
+            if future not in handed and future.done() and not future.cancelled() and future.exception() is None:
+                handed.add(future)
+                finish(case, future.result())
         raise
     pool.shutdown()
+
+
+def stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Cancel the queued work of ``pool`` and terminate its worker processes now (what
+    ``ProcessPoolExecutor.terminate_workers`` does from Python 3.14; before, through the pool's processes)."""
+    terminate = getattr(pool, "terminate_workers", None)
+    if terminate is not None:  # pragma: no cover - Python 3.14+
+        terminate()
+        return
+    processes = dict(getattr(pool, "_processes", None) or {})
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes.values():
+        with contextlib.suppress(ValueError, ProcessLookupError):  # closed or gone already
+            if process.is_alive():
+                process.terminate()
+    for process in processes.values():
+        with contextlib.suppress(ValueError):
+            process.join(STOP_GRACE_S)
+            if process.is_alive():
+                process.kill()
+                process.join()
 
 
 def _run_dask(todo: list[Case], finish: Finish, scheduler: str | None, workers: int | None) -> None:

@@ -4,7 +4,8 @@ file per case written atomically by this process, resumable, failures recorded, 
 The folder of a sweep holds ``sweep.json`` (the sweep, checked on resume), ``<case>.nc`` per finished case,
 ``<case>.failed.json`` per failed case (its error) and ``sweep.log``. A case counts as finished only when its file
 exists, and files appear only complete (``wecss.netcdf.write_netcdf``), so a sweep killed at any point and started
-again runs exactly the cases that have no file.
+again runs exactly the cases that have no file. An interrupt (Ctrl-C, SIGTERM under the command) is no failure: it
+stops the sweep, the cases being computed stay pending and the finished ones are kept.
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ from typing import Any, ParamSpec, TextIO, TypeVar
 
 import xarray as xr
 
+from ..compiled import scene_inputs
+from ..files import refuse_overwrite
 from ..netcdf import write_netcdf
 from ._case import CaseOutcome
 from ._combine import combine
@@ -60,6 +63,37 @@ def prepare_folder(sweep: Sweep, folder: str | os.PathLike[str]) -> Path:
     else:
         write_text(record, text)
     return path
+
+
+def check_outputs(sweep: Sweep, folder: str | os.PathLike[str]) -> None:
+    """Refuse, before any file is written, a folder where a sweep's files (``sweep.json``, the log, the combined
+    dataset, each case's result and failure record) would overwrite an input of one of its cases (the device spec
+    and the files it names, the database, ``sea.file``) or lie in the radiation-fit cache.
+
+    Raises
+    ------
+    wecss.files.OverwriteError
+        (a ValueError) Naming the file, the input's field and the case.
+    """
+    path = Path(folder)
+    outputs = {
+        "sweep record": path / SWEEP_FILE,
+        "sweep log": path / LOG_FILE,
+        "combined dataset": path / COMBINED_FILE,
+    }
+    for case in sweep.cases:
+        result, failure = case_paths(path, case)
+        outputs[f"result file of case {case.name}"] = result
+        outputs[f"failure record of case {case.name}"] = failure
+    inputs: dict[str, Path] = {}
+    seen: set[tuple[object, ...]] = set()
+    for case in sweep.cases:  # the inputs depend on these fields only: read once per combination
+        scene = case.scene
+        key = (scene.device.name, scene.device.hydro, scene.sea.kind, scene.sea.file)
+        if key not in seen:
+            seen.add(key)
+            inputs.update({f"{label} in case {case.name}": p for label, p in scene_inputs(scene).items()})
+    refuse_overwrite(outputs, inputs)
 
 
 class _Log:
@@ -153,7 +187,8 @@ def run_sweep(
     ------
     ValueError
         On an unknown executor, a setting given to an executor it does not belong to (the message names the one it
-        belongs to), bad setting values, or a folder that holds another sweep.
+        belongs to), bad setting values, a folder that holds another sweep, or one whose files would overwrite an
+        input of a case (``wecss.files.OverwriteError``, before anything is written).
     TypeError
         On the keyword arguments this function no longer takes (``processes=``, ``dask=``): the message gives the
         new form of the call, e.g. ``run_sweep(processes=2)`` is now ``run_sweep(executor='processes', workers=2)``.
@@ -161,6 +196,7 @@ def run_sweep(
         If Dask is asked for and not installed.
     """
     check_executor(executor, workers=workers, scheduler=scheduler)
+    check_outputs(sweep, folder)
     path = prepare_folder(sweep, folder)
     log = _Log(path / LOG_FILE)
     todo = []

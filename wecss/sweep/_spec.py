@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from ..scene import Scene, SceneError, default_scene_path
+from ..tomlfile import read_toml
 
 SWEEP_MODES = ("grid", "list")
 
@@ -233,7 +234,7 @@ class Sweep:
         if not path.is_file():
             raise FileNotFoundError(f"no sweep file at {str(path)!r}")
         try:
-            data = tomllib.loads(path.read_text())
+            data = read_toml(path)
         except tomllib.TOMLDecodeError as err:
             raise SceneError(f"{path}: not valid TOML: {err}") from None
         return cls.from_dict(data, base=path.parent)

@@ -28,6 +28,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from ...tomlfile import read_toml
 from ._mesh import DEFAULT_ASPECT_RATIO
 from ._profile import AxisymmetricProfile
 from ._spec import BEMSpec, FloatBody, omega_grid
@@ -73,7 +74,7 @@ def read_geometry(path: str | os.PathLike[str]) -> BEMSpec:
     if not file.is_file():
         raise FileNotFoundError(f"no geometry file at {str(file)!r}")
     try:
-        data = tomllib.loads(file.read_text(encoding="utf-8"))
+        data = read_toml(file)
     except tomllib.TOMLDecodeError as err:
         raise GeometryFileError(f"{file.name}: invalid TOML: {err}") from None
     where = file.name
