@@ -121,7 +121,7 @@ class _Excitation:
         if self.sampled is not None and (
             self.table is None or first < self.start or first + count > self.start + self.table.shape[0]
         ):  # the next block of samples
-            self.table = np.ascontiguousarray(self.sampled(first, max(count, self.sampled.block)).T)
+            self.table = self.sampled(first, max(count, self.sampled.block))
             self.start = first
         if self.table is not None:
             return self.table[first - self.start : first - self.start + count]

@@ -17,15 +17,17 @@ values equal the direct sum of the components to the round-off of the FFTs.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 BLOCK_VALUES: int = 2**22
-"""Values (rows x samples) of one block of results (64 MB complex): blocks are as long as this allows, and at
+"""Values (rows x samples) of one block of results (32 MB real): blocks are as long as this allows, and at
 least as long as the band of harmonics W (then the FFT length is at most twice the block)."""
 
-WORK_VALUES: int = 2**20
-"""Complex values (rows x FFT length) of the FFTs' work array (16 MB): the rows are transformed in groups of this
-size, which also keeps the transforms in the processor's caches."""
+WORK_VALUES: int = 2**19
+"""Complex values (rows x FFT length) of the FFTs' work array (8 MB): the rows are transformed in groups of this
+size, which bounds the transforms' temporaries."""
 
 
 def fast_length(n: int) -> int:
@@ -143,9 +145,23 @@ class BlockSum:
 
     def __call__(self, n0: int, m: int) -> np.ndarray:
         """The sums at samples ``n0`` to ``n0 + m - 1``, complex (n_rows, m)."""
+        out = np.empty((self.rows, m), dtype=complex)
+        for rows, part, values in self._parts(n0, m):
+            out[rows, part] = values
+        return out
+
+    def real(self, n0: int, m: int) -> np.ndarray:
+        """The real parts of the sums at samples ``n0`` to ``n0 + m - 1``, time-major (m, n_rows), C-contiguous
+        (the layout the time loop reads; no complex array of the whole block is made)."""
+        out = np.empty((m, self.rows))
+        for rows, part, values in self._parts(n0, m):
+            out[part, rows] = values.real.T
+        return out
+
+    def _parts(self, n0: int, m: int) -> Iterator[tuple[slice, slice, np.ndarray]]:
+        """The sums by groups of rows and blocks of samples: (rows, samples from ``n0``, complex values)."""
         if m < 0:
             raise ValueError(f"the number of samples must be >= 0; got {m!r}")
-        out = np.empty((self.rows, m), dtype=complex)
         width = self.band.size
         group = max(1, min(self.rows, WORK_VALUES // self.length))
         work = np.zeros((group, self.length), dtype=complex)
@@ -161,6 +177,8 @@ class BlockSum:
                 k = rows.stop - r0
                 np.multiply(self.spectrum[rows], shift, out=work[:k, :width])
                 work[:k, width:] = 0.0
-                values = np.fft.ifft(np.fft.fft(work[:k], axis=1) * self.kernel_fft, axis=1)
-                np.multiply(values[:, :count], after, out=out[rows, start : start + count])
-        return out
+                spectrum = np.fft.fft(work[:k], axis=1)
+                spectrum *= self.kernel_fft
+                values = np.fft.ifft(spectrum, axis=1)[:, :count]
+                values *= after
+                yield rows, slice(start, start + count), values

@@ -85,10 +85,11 @@ class SampledForce:
         return self.sums.block
 
     def __call__(self, n0: int, m: int) -> np.ndarray:
-        """Forces (n_dof, m) at the times (n0 + j) tau, j = 0 ... m - 1 [N, N m], ramp included."""
-        out = np.real(self.sums(n0, m))
+        """Forces at the times (n0 + j) tau, j = 0 ... m - 1 [N, N m], ramp included, time-major (m, n_dof) as the
+        time loop reads them (:meth:`ExcitationModel.force` gives (n_dof, m))."""
+        out = self.sums.real(n0, m)
         if self.ramp is not None:
-            out *= self.ramp((n0 + np.arange(m)) * self.tau)[None, :]
+            out *= self.ramp((n0 + np.arange(m)) * self.tau)[:, None]
         return out
 
 
