@@ -146,8 +146,9 @@ def table(results: dict[tuple[str, float], list[dict]]) -> str:  # type: ignore[
         )
     lines += [
         "",
-        "Set-up (medians, statistics-only cases; the parts timed again after the compile, which includes reading "
-        "the database):",
+        "Set-up (medians, statistics-only cases): compile_scene of the case after the 8-Tp warm-up (the device, "
+        "its database and radiation fit already in memory, as for a sweep's cases), and its parts timed again "
+        "after it:",
         "",
         "| duration | wave components | compile_scene | wave components | excitation coefficients | A_inf correction "
         "| block transform set-up (samples per block) |",
@@ -162,7 +163,24 @@ def table(results: dict[tuple[str, float], list[dict]]) -> str:  # type: ignore[
             f"| {_median(rows, 'correction_s') * 1e3:.0f} ms | {_median(rows, 'blocks_s') * 1e3:.0f} ms "
             f"({rows[0]['block']:,}) |"
         )
-    return "\n".join(lines)
+    return "\n".join(lines) + "\n\n" + READING
+
+
+READING = """\
+How to read it. The wave components grow with the duration (d_omega = 2 pi / duration). A run whose excitation
+fits in one table (2**22 values: about 870 Tp on m4-134) evaluates it once by one inverse FFT; a longer run did,
+before issue 29, sum its components per chunk of 2000 steps (the last column: about 115 us per step at 1000 Tp and
+670 us at 10,000 Tp, on top of the loop's own cost; 6000 Tp ran at about 300 steps per second). It now evaluates it
+in blocks of about 2**22 values, one chirp-z transform each (`wecss.waves.BlockSum`): the excitation's column
+"now", whose cost per step does not depend on the run's length or its components (about 2 to 3 times the one-table
+FFT's, that is about 1 us per step more than a short run, some 7 % of a quiet machine's 11.6 us step) and whose
+memory is the block's (the peak RSS grows by the block between 100 and 1000 Tp and then only by the components'
+coefficients, 24 x 16 bytes each, in the compiled scene and the block transform). The set-up grows linearly with
+the components, at most a few tenths of a second at 10,000 Tp: the A_inf correction sums the memory response over
+the frequencies before the matrices (`wecss.compiled.weighted_memory_response`; before: 3.5 s at 6000 Tp) and the
+power bound solves the frequencies in blocks (before: 0.6 GB of matrices at 10,000 Tp, a peak of 1.0 GB). On a
+shared machine the loop's ratios to 100 Tp move with the load (read them against the spread of the repeats); the
+excitation's columns are the part of a step that depends on the duration."""
 
 
 def main() -> None:
