@@ -94,11 +94,12 @@ class _Excitation:
     """The excitation at the loop's times (steps, or half steps for RK4) [N, N m], (n_t, n_h).
 
     Evaluated once for the whole run when it fits in EXCITATION_TABLE_MAX values: on the uniform times of a
-    record whose components are harmonics of its duration that is one inverse FFT (about 0.3 us per step on
-    m4-134, whatever the number of components). Longer runs of such records evaluate it in blocks of about as many
-    values, one chirp-z transform each (``wecss.waves.SampledForce``: about 1 us per step, whatever the number of
-    components and the run's length); records that do not repeat are summed per chunk of steps (a cost per step
-    that grows with the components). The forces agree to round-off whichever way they are evaluated.
+    record whose components are harmonics of its duration that is one inverse FFT (0.6 us per step on m4-134,
+    whatever the number of components). Longer runs of such records evaluate it in blocks of about as many values,
+    one chirp-z transform each (``wecss.waves.SampledForce``: 1.3-1.7 us per step, whatever the number of
+    components and the run's length; both on a loaded machine, docs/benchmarks.md "Long runs"); records that do not
+    repeat are summed per chunk of steps (a cost per step that grows with the components: 113 us at 1000 Tp). The
+    forces agree to round-off whichever way they are evaluated.
     """
 
     def __init__(self, compiled: CompiledScene, per_step: int) -> None:
