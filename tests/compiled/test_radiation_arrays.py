@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tests.radiation.analytic import analytic_hydro, known_system, response
-from wecss.compiled import added_mass_correction, from_impulse_response, from_state_space
+from wecss.compiled import added_mass_correction, from_impulse_response, from_state_space, weighted_memory_response
 from wecss.compiled import memory_response as frequency_response
 from wecss.radiation import RadiationStateSpace, impulse_response
 from wecss.sim._memory import memory_advance, memory_history
@@ -81,6 +81,24 @@ def test_the_loop_convolution_applies_the_arrays_response(coarse_step):
     k_hat = frequency_response(arrays, np.array([omega]), dt)[0]
     expected = -np.real(k_hat @ amplitude * np.exp(1j * omega * steps * dt))
     np.testing.assert_allclose(force, expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
+
+
+@pytest.mark.parametrize("kind", ["state_space", "convolution"])
+def test_weighted_memory_response_is_the_weighted_sum_of_the_responses(kind):
+    """Summed over frequencies first (the A_inf correction of long runs): the same as the sum of the responses, over
+    more frequencies than one block."""
+    hydro = analytic_hydro()
+    dt = 0.01
+    if kind == "state_space":
+        a, b, c = known_system()
+        arrays, _ = from_state_space(RadiationStateSpace(a, b, c, tuple(hydro.dofs)), dt)
+    else:
+        arrays, _ = from_impulse_response(impulse_response(hydro), dt)
+    omega = np.linspace(0.3, 15.0, 2500)
+    weights = np.random.default_rng(3).uniform(-1.0, 2.0, omega.size)
+    expected = np.einsum("w,wij->ij", weights, frequency_response(arrays, omega, dt))
+    got = weighted_memory_response(arrays, omega, weights, dt)
+    np.testing.assert_allclose(got, expected, rtol=1e-11, atol=1e-11 * np.abs(expected).max())
 
 
 def test_added_mass_correction_recovers_an_offset_in_a_inf():

@@ -30,6 +30,7 @@ from ._radiation import from_state_space as from_state_space
 from ._radiation import interpolate_matrices as interpolate_matrices
 from ._radiation import memory_response as memory_response
 from ._radiation import no_radiation as no_radiation
+from ._radiation import weighted_memory_response as weighted_memory_response
 from ._viscous import TERM_COLUMNS as TERM_COLUMNS
 from ._viscous import TERM_ROWS as TERM_ROWS
 from ._wave_field import OUTSIDE_TABLE as OUTSIDE_TABLE

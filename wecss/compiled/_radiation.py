@@ -325,19 +325,17 @@ def memory_response(arrays: RadiationArrays, omega: np.ndarray, dt: float) -> np
     return out
 
 
-def _subtract_convolution_response(arrays: RadiationArrays, omega: np.ndarray, dt: float, out: np.ndarray) -> None:
-    """Subtract sum_k K_k exp(-i omega tau_k) of the convolution's stored lags from ``out`` (n_omega, n_h, n_h).
-
-    Columns with the same lags (usually all of them) share one cos/sin table of omega tau_k and one pair of real
-    matrix products: the exponentials, not the products, dominated when each column built its own (0.28 s for
-    m4-134 at 359 frequencies)."""
+def _convolution_groups(arrays: RadiationArrays) -> list[tuple[np.ndarray, np.ndarray, list[tuple[np.ndarray, int]]]]:
+    """The convolution's stored lags grouped by columns with the same lags (usually all of them): per group the lags
+    [steps] (oldest first), the kernel values (n_lags, n_entries) side by side and per column its rows and index,
+    in the order of the values' columns."""
     n_h = arrays.newest.shape[0]
     groups: dict[tuple[int, int], list[int]] = {}
     for c in range(n_h):
         groups.setdefault((int(arrays.fine_length[c]), int(arrays.coarse_length[c])), []).append(c)
+    out = []
     for (nf, nc), columns in groups.items():
-        lags = np.concatenate([np.arange(nf, 0, -1), nf + arrays.stride * np.arange(nc, 0, -1)])  # oldest first
-        phase = np.outer(omega, lags * dt)
+        lags = np.concatenate([np.arange(nf, 0, -1), nf + arrays.stride * np.arange(nc, 0, -1)])
         blocks, targets = [], []
         for c in columns:
             members = arrays.row[arrays.col[c] : arrays.col[c + 1]]
@@ -346,13 +344,66 @@ def _subtract_convolution_response(arrays: RadiationArrays, omega: np.ndarray, d
             coarse = arrays.coarse[arrays.coarse_start[c] : arrays.coarse_start[c] + nc * size].reshape(nc, size)
             blocks.append(np.concatenate([fine, coarse]))
             targets.append((members, c))
-        values = np.concatenate(blocks, axis=1)
+        out.append((lags, np.concatenate(blocks, axis=1), targets))
+    return out
+
+
+def _subtract_convolution_response(arrays: RadiationArrays, omega: np.ndarray, dt: float, out: np.ndarray) -> None:
+    """Subtract sum_k K_k exp(-i omega tau_k) of the convolution's stored lags from ``out`` (n_omega, n_h, n_h).
+
+    Columns with the same lags share one cos/sin table of omega tau_k and one pair of real matrix products: the
+    exponentials, not the products, dominated when each column built its own (0.28 s for m4-134 at 359
+    frequencies)."""
+    for lags, values, targets in _convolution_groups(arrays):
+        phase = np.outer(omega, lags * dt)
         real, imag = np.cos(phase) @ values, np.sin(phase) @ values  # exp(-i x) = cos x - i sin x
         start = 0
         for members, c in targets:
             part = slice(start, start + members.size)
             out[:, members, c] -= real[:, part] - 1j * imag[:, part]
             start += members.size
+
+
+def weighted_memory_response(arrays: RadiationArrays, omega: np.ndarray, weights: np.ndarray, dt: float) -> np.ndarray:
+    """sum_k w_k K_hat(omega_k) (n_h, n_h) over frequencies ``omega`` [rad/s] with real weights ``weights``, where
+    K_hat is :func:`memory_response`, without making K_hat at each frequency.
+
+    The response is linear in the state-space resolvents 1 / (i omega - lambda) and in the convolution's phasors
+    exp(-i omega tau), so the weights sum those first: the work is n_omega x n_states (or n_omega x n_lags) instead
+    of n_omega x n_h^2 x n_states, the memory a block of WEIGHTED_BLOCK frequencies. Equal to the weighted sum of
+    :func:`memory_response` to round-off.
+    """
+    omega = np.atleast_1d(np.asarray(omega, dtype=float))
+    weights = np.broadcast_to(np.asarray(weights, dtype=float), omega.shape)
+    n_h = arrays.newest.shape[0]
+    blocks = [slice(start, start + WEIGHTED_BLOCK) for start in range(0, omega.size, WEIGHTED_BLOCK)]
+    if arrays.kind == RadiationKind.STATE_SPACE:
+        full = np.zeros(arrays.poles.size, dtype=complex)  # sum_k w_k / (i omega_k - lambda)
+        mirror = np.zeros(arrays.poles.size, dtype=complex)  # sum_k w_k / (-i omega_k - lambda)
+        for b in blocks:
+            full += weights[b] @ (1.0 / (1j * omega[b, None] - arrays.poles[None, :]))
+            mirror += weights[b] @ (1.0 / (-1j * omega[b, None] - arrays.poles[None, :]))
+        # as in memory_response: the kept states stand for conjugate pairs
+        return 0.5 * ((arrays.output * full) @ arrays.input + np.conj((arrays.output * mirror) @ arrays.input))
+    out = np.zeros((n_h, n_h), dtype=complex)
+    if arrays.kind == RadiationKind.CONVOLUTION:
+        out -= arrays.newest * weights.sum()
+        for lags, values, targets in _convolution_groups(arrays):
+            phasor = np.zeros(lags.size, dtype=complex)  # sum_k w_k exp(-i omega_k tau)
+            for b in blocks:
+                phase = np.outer(omega[b], lags * dt)
+                phasor += weights[b] @ np.cos(phase) - 1j * (weights[b] @ np.sin(phase))
+            summed = phasor @ values
+            start = 0
+            for members, c in targets:
+                out[members, c] -= summed[start : start + members.size]
+                start += members.size
+    return out
+
+
+WEIGHTED_BLOCK: int = 2048
+"""Frequencies per block in :func:`weighted_memory_response` (a block holds n_states or n_lags complex values per
+frequency)."""
 
 
 def interpolate_matrices(omega_data: np.ndarray, values: np.ndarray, omega: np.ndarray) -> np.ndarray:
@@ -387,16 +438,15 @@ def added_mass_correction(
     is not exactly the database's. Without the correction the time-domain added mass is off by that constant.
     """
     w = np.asarray(weights, dtype=float) / np.sum(weights)
-    correction = np.zeros_like(added_mass_inf, dtype=float)
+    omega = np.asarray(omega, dtype=float)
+    # sum_k w_k (A(omega_k) - A_inf - Im K_hat(omega_k) / omega_k), the memory's part summed over frequencies first
+    correction = -np.imag(weighted_memory_response(arrays, omega, w / omega, dt)) - added_mass_inf * w.sum()
     for start in range(0, omega.size, RESPONSE_BLOCK):  # in blocks: long runs have 10^4 frequencies and more
         block = slice(start, start + RESPONSE_BLOCK)
-        response = memory_response(arrays, omega[block], dt)
-        data = interpolate_matrices(omega_data, added_mass, omega[block])
-        residual = data - added_mass_inf[None] - response.imag / omega[block, None, None]
-        correction += np.einsum("w,wij->ij", w[block], residual)
+        correction += np.einsum("w,wij->ij", w[block], interpolate_matrices(omega_data, added_mass, omega[block]))
     return 0.5 * (correction + correction.T)
 
 
 RESPONSE_BLOCK: int = 256
-"""Frequencies per block in :func:`added_mass_correction` (the state-space response holds n_h x n_h x n_states
-complex values per frequency)."""
+"""Frequencies per block of the database's interpolated added mass in :func:`added_mass_correction` (n_h x n_h
+values per frequency)."""

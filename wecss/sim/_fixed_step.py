@@ -25,6 +25,7 @@ from ..compiled.kernels import configure, respond, workspace
 from ..control import ControlledScene
 from ..outputs import CHANNEL_NAMES
 from ..scene import Capabilities, Runner
+from ..waves import SampledForce
 from ._control import ControlLoop
 from ._errors import PtoLimitExceeded, SimulationDiverged
 from ._guards import farthest_body, stiff_pto_hint, translation_bound
@@ -40,7 +41,7 @@ CHUNK_STEPS: int = 2000
 
 EXCITATION_TABLE_MAX: int = 2**22
 """Most values (times x hydrodynamic DOFs, 32 MB) of the excitation evaluated once for the whole run; longer runs
-evaluate it per chunk of steps (their memory stays flat, their cost per step grows with the wave components)."""
+evaluate it in blocks of about as many values (their memory and their cost per step stay flat)."""
 
 CALM_VELOCITY_LIMIT: float = 1e-6
 """In calm water, a generalised velocity above this [m/s or rad/s] means energy grew without input."""
@@ -93,22 +94,38 @@ class _Excitation:
     """The excitation at the loop's times (steps, or half steps for RK4) [N, N m], (n_t, n_h).
 
     Evaluated once for the whole run when it fits in EXCITATION_TABLE_MAX values: on the uniform times of a
-    record whose components are harmonics of its duration that is one inverse FFT (about 1 us per step, whatever
-    the number of components), against 13 us (100 Tp) to 47 us (500 Tp) per step for sums per chunk on m4-134.
-    The times are the same floating-point numbers either way, so the forces differ only by round-off.
+    record whose components are harmonics of its duration that is one inverse FFT (0.6 us per step on m4-134,
+    whatever the number of components). Longer runs of such records evaluate it in blocks of about as many values,
+    one chirp-z transform each (``wecss.waves.SampledForce``: 1.3-1.7 us per step, whatever the number of
+    components and the run's length; both on a loaded machine, docs/benchmarks.md "Long runs"); records that do not
+    repeat are summed per chunk of steps (a cost per step that grows with the components: 113 us at 1000 Tp). The
+    forces agree to round-off whichever way they are evaluated.
     """
 
     def __init__(self, compiled: CompiledScene, per_step: int) -> None:
         self.compiled, self.per_step = compiled, per_step
         n_times = per_step * compiled.n_steps + 1
+        n_h = compiled.plant.hydro_index.size
         self.table: np.ndarray | None = None
-        if compiled.excitation is not None and n_times * compiled.plant.hydro_index.size <= EXCITATION_TABLE_MAX:
+        self.sampled: SampledForce | None = None
+        self.start = 0  # the first sample of the table
+        if compiled.excitation is None:
+            return
+        if n_times * n_h <= EXCITATION_TABLE_MAX:
             self.table = compiled.excitation_at(np.arange(n_times) / per_step * compiled.dt)
+        else:
+            self.sampled = compiled.excitation.sampled(compiled.dt / per_step, max(1, EXCITATION_TABLE_MAX // n_h))
 
     def chunk(self, done: int, m: int) -> np.ndarray:
         """The forces at steps ``done`` to ``done + m`` (with the stages between them)."""
+        first, count = self.per_step * done, self.per_step * m + 1
+        if self.sampled is not None and (
+            self.table is None or first < self.start or first + count > self.start + self.table.shape[0]
+        ):  # the next block of samples
+            self.table = self.sampled(first, max(count, self.sampled.block))
+            self.start = first
         if self.table is not None:
-            return self.table[self.per_step * done : self.per_step * (done + m) + 1]
+            return self.table[first - self.start : first - self.start + count]
         return self.compiled.excitation_at((done + np.arange(self.per_step * m + 1) / self.per_step) * self.compiled.dt)
 
 

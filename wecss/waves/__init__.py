@@ -1,5 +1,6 @@
 """Waves: spectra, elevation records (regular, irregular, periodic, measured) and excitation forces in time."""
 
+from ._blocks import BlockSum as BlockSum
 from ._elevation import DEFAULT_ENERGY_THRESHOLD as DEFAULT_ENERGY_THRESHOLD
 from ._elevation import DroppedComponents as DroppedComponents
 from ._elevation import Ramp as Ramp
@@ -10,6 +11,7 @@ from ._elevation import from_elevation as from_elevation
 from ._elevation import irregular as irregular
 from ._elevation import regular as regular
 from ._excitation import ExcitationModel as ExcitationModel
+from ._excitation import SampledForce as SampledForce
 from ._excitation import excitation_coefficients as excitation_coefficients
 from ._excitation import excitation_model as excitation_model
 from ._spectra import Jonswap as Jonswap

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._blocks import harmonic_numbers, harmonic_period
 from ._spectra import Spectrum
 
 DEFAULT_ENERGY_THRESHOLD: float = 1e-4
@@ -122,24 +123,12 @@ FFT_MAX_PERIOD_FACTOR: int = 4
 """The FFT path of :func:`evaluate` is taken when the period in steps is at most this many times the number of
 times (else the recurrence is cheaper)."""
 
-FFT_PHASE_TOL: float = 1e-10
-"""Largest drift allowed on the FFT path [cycles per period]: omega_k dt P / (2 pi) may differ from an integer by
-this much, so the phase error stays below 2 pi 1e-10 per period of the record (round-off of the harmonic numbers
-is about 1e-13)."""
-
 
 def _fft_period(omega: np.ndarray, dt: float, n_times: int) -> int | None:
-    """The number of steps P after which every component repeats on the grid of step ``dt``, or None."""
-    if omega.size == 0 or dt <= 0:
-        return None
-    cycles = np.sort(omega) * dt / (2 * np.pi)  # cycles per step
-    gaps = np.diff(cycles)
-    base = float(gaps[gaps > 1e-12 * cycles[-1]].min()) if omega.size > 1 and np.any(gaps > 0) else float(cycles[0])
-    period = round(1.0 / base)
-    if period < 1 or period > FFT_MAX_PERIOD_FACTOR * n_times + 1024:
-        return None
-    harmonics = cycles * period
-    if np.max(np.abs(harmonics - np.round(harmonics))) > FFT_PHASE_TOL:
+    """The number of steps P after which every component repeats on the grid of step ``dt``, or None (also when
+    it is more than FFT_MAX_PERIOD_FACTOR times ``n_times`` plus 1024)."""
+    period = harmonic_period(omega, dt)
+    if period is None or period > FFT_MAX_PERIOD_FACTOR * n_times + 1024:
         return None
     return period
 
@@ -147,7 +136,7 @@ def _fft_period(omega: np.ndarray, dt: float, n_times: int) -> int | None:
 def _evaluate_fft(coefficients: np.ndarray, omega: np.ndarray, time: np.ndarray, period: int) -> np.ndarray:
     """:func:`evaluate` on uniform times by one inverse FFT of length ``period`` per row (see there)."""
     dt = time[1] - time[0]
-    harmonic = np.round(omega * dt * period / (2 * np.pi)).astype(np.int64) % period
+    harmonic = harmonic_numbers(omega, dt, period) % period
     spectrum = np.zeros((coefficients.shape[0], period), dtype=complex)
     shifted = coefficients * np.exp(1j * omega * time[0])[None, :]
     if np.unique(harmonic).size == harmonic.size:

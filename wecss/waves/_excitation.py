@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..hydro import HydroData, split_dof
+from ._blocks import BlockSum
 from ._elevation import Ramp, WaveComponents, evaluate
 from ._spectra import wavenumber
 
@@ -50,6 +51,45 @@ class ExcitationModel:
         out = np.real(evaluate(self.coefficients, self.omega, time, chunk=chunk))
         if self.ramp is not None:
             out *= self.ramp(time)[None, :]
+        return out
+
+    def sampled(self, tau: float, block: int | None = None) -> SampledForce | None:
+        """The forces at the times n tau [s] of a uniform grid, by blocks of ``block`` samples (see
+        :class:`SampledForce`); None when the components do not repeat on that grid (a record that does not
+        repeat: :meth:`force` evaluates it)."""
+        sums = BlockSum.on_grid(self.coefficients, self.omega, tau, block)
+        return None if sums is None else SampledForce(sums, tau, self.ramp)
+
+
+@dataclass(frozen=True)
+class SampledForce:
+    """Excitation forces at the times n tau of a uniform grid, evaluated for blocks of consecutive samples n at a
+    cost per sample and a memory that depend on neither the number of wave components nor n (a chirp-z transform
+    per block: :class:`~wecss.waves._blocks.BlockSum`). Equal to :meth:`ExcitationModel.force` to round-off.
+
+    Attributes
+    ----------
+    sums : BlockSum
+    tau : float
+        Step of the grid [s].
+    ramp : Ramp or None
+    """
+
+    sums: BlockSum
+    tau: float
+    ramp: Ramp | None = None
+
+    @property
+    def block(self) -> int:
+        """Samples per block (a call for more is made of several)."""
+        return self.sums.block
+
+    def __call__(self, n0: int, m: int) -> np.ndarray:
+        """Forces at the times (n0 + j) tau, j = 0 ... m - 1 [N, N m], ramp included, time-major (m, n_dof) as the
+        time loop reads them (:meth:`ExcitationModel.force` gives (n_dof, m))."""
+        out = self.sums.real(n0, m)
+        if self.ramp is not None:
+            out *= self.ramp((n0 + np.arange(m)) * self.tau)[:, None]
         return out
 
 

@@ -99,13 +99,21 @@ def pto_response(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray
         If the coefficients are not (n_h, n_omega) or not finite, or a frequency is not positive.
     """
     omega, coefficients = _check_waves(model, omega, coefficients)
-    z = model.dynamic_stiffness(omega)  # (n_w, nv, nv)
     g = model.pto_jacobian
-    forcing = (model.hydro_jacobian.T @ coefficients).T[:, :, None]  # Bw' F per component (n_w, nv, 1)
-    inputs = np.broadcast_to(g.T.astype(complex), (omega.size, *g.T.shape))
-    solved = np.linalg.solve(z, np.concatenate([forcing, inputs], axis=2))
-    rate = 1j * omega[:, None, None] * (g @ solved)  # (n_w, n_pto, 1 + n_pto)
+    rate = np.empty((omega.size, g.shape[0], 1 + g.shape[0]), dtype=complex)  # (n_w, n_pto, 1 + n_pto)
+    for start in range(0, omega.size, RESPONSE_BLOCK):  # the database's matrices per frequency, a block at a time
+        w = slice(start, start + RESPONSE_BLOCK)
+        z = model.dynamic_stiffness(omega[w])  # (n_w, nv, nv)
+        forcing = (model.hydro_jacobian.T @ coefficients[:, w]).T[:, :, None]  # Bw' F per component (n_w, nv, 1)
+        inputs = np.broadcast_to(g.T.astype(complex), (z.shape[0], *g.T.shape))
+        solved = np.linalg.solve(z, np.concatenate([forcing, inputs], axis=2))
+        rate[w] = 1j * omega[w, None, None] * (g @ solved)
     return rate[:, :, 0].T, rate[:, :, 1:]
+
+
+RESPONSE_BLOCK: int = 1024
+"""Frequencies per block in :func:`pto_response`: the added mass and damping at a frequency are n_h x n_h matrices
+(2 x 4.6 kB on m4-134), so a long run's 36,000 wave components took about 0.6 GB at once."""
 
 
 def power_bound(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray) -> PowerBound:
