@@ -44,6 +44,10 @@ def main() -> None:
     args = parser.parse_args()
     data = Scene.from_toml(default_scene_path()).to_dict()
     data = {**data, "device": {"name": "m4-134"}, "outputs": {"variables": ["pto"]}}
+    # m4-134 has no mooring: with the body-exact Froude-Krylov force the raft drifts down-wave (about 30 m in the
+    # 120 s of the default sea state, the mean second-order force and nothing to hold it), beyond the default
+    # translation bound; the benchmark lets it (the incident field's table reaches that far)
+    data["solver"] = {**data.get("solver", {}), "translation_bound": 1000.0}
     if args.quick:
         data["sea"] = {**data["sea"], "duration": "4 Tp", "ramp": "1 Tp"}
     base = Scene.from_dict(data)
@@ -64,7 +68,9 @@ def main() -> None:
         f"m4-134, the default JONSWAP sea state, Beeman, dt = Tp/200, state-space radiation; median of {repeats} runs "
         f"of the whole record (the time loop alone), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}; "
         f"{datetime.date.today()}, load average {os.getloadavg()[0]:.1f} at the end. Each step evaluates the "
-        "configuration once (Beeman's corrector reuses it); the meshes are the spec's (`[[meshes]]`). Field points: "
+        "configuration once (Beeman's corrector reuses it); the meshes are the spec's (`[[meshes]]`). The raft has no "
+        "mooring: with the Froude-Krylov force it drifts down-wave about 30 m over the run (translation bound raised). "
+        "Field points: "
         "where the last step took the incident field (wet vertices and cut edges; value and gradient each).",
         "",
         "| case | per step [us] | least [us] | added [us] | triangles | vertices | field points | "

@@ -14,13 +14,13 @@ Two ways to evaluate it, chosen when the arrays are made (:func:`field_arrays`):
 
 - **direct sums** (regular waves, a few components): every point costs one complex exponential per component;
 - **a table** (irregular seas): the field of the current time on a grid in (x', z') that covers the region the
-  bodies can reach; at each new time t the nodes of the cells the points of that evaluation need are refreshed
-  (:func:`field_refresh`; cost per node about (4 + 2 n_z) multiply-adds per component), and interpolated at the
-  points at a cost independent of the number of components: cubic Hermite in x' from the values and x'-slopes at
-  the nodes, Chebyshev series (Clenshaw) of degree n_z - 1 in z' on [z_min, 0] (the nodes are the
-  Chebyshev-Lobatto points, z' = 0 among them). The node spacing and n_z are the smallest that keep the bound
-  sum_k |A_k| e_k (e_k: the interpolation error of component k, computed) below ``tolerance`` times the sea's
-  standard deviation, half for x' and half for z'.
+  bodies can reach, and along x' as far beyond it as :data:`TABLE_NODE_BUDGET` allows; at each new time t the
+  nodes of the cells the points of that evaluation need are refreshed (:func:`field_refresh`; cost per node about
+  (4 + 2 n_z) multiply-adds per component), and interpolated at the points at a cost independent of the number
+  of components: cubic Hermite in x' from the values and x'-slopes at the nodes, Chebyshev series (Clenshaw) of
+  degree n_z - 1 in z' on [z_min, 0] (the nodes are the Chebyshev-Lobatto points, z' = 0 among them). The node
+  spacing and n_z are the smallest that keep the bound sum_k |A_k| e_k (e_k: the interpolation error of
+  component k, computed) below ``tolerance`` times the sea's standard deviation, half for x' and half for z'.
   A point outside the table (x' off the active nodes, z' below z_min) is evaluated by direct sums instead and
   sets the flag :data:`OUTSIDE_TABLE` in ``status``.
 
@@ -59,6 +59,10 @@ the lowest point of a region, for the stretched height of a point under a crest.
 
 MAX_TABLE_NODES: int = 200_000
 """Refuse tables with more nodes (x' nodes times z nodes) than this: the regions or the tolerance are unreasonable."""
+
+TABLE_NODE_BUDGET: int = 200_000
+"""The table reaches along x' beyond the regions the bodies can reach until it has about this many nodes (x' nodes
+times z nodes; 3.2 MB of values and slopes): only the nodes under the bodies are computed at a step."""
 
 
 class FieldArrays(NamedTuple):
@@ -694,6 +698,13 @@ def _table_grid(
             f"the table of the incident field would have {int(active.sum())} x {profile.shape[1]} nodes (more than "
             f"{MAX_TABLE_NODES}): shrink the regions or loosen the tolerance ({tolerance:g})"
         )
+    # along x' the table reaches beyond the regions, every node active, as far as TABLE_NODE_BUDGET allows: a step
+    # computes only the nodes under the bodies, so the width costs memory alone, and a body that drifts out of its
+    # region (an unmoored float in steep waves) stays in the table
+    extra = max(TABLE_NODE_BUDGET // profile.shape[1] - n_x, 0) // 2
+    if extra:
+        lo -= extra * step
+        active = np.ones(n_x + 2 * extra, dtype=np.uint8)
     return _Grid(float(lo), float(step), active, float(z_min), profile)
 
 
