@@ -20,7 +20,7 @@ rounding for any pose, in either surface mode.
 **Froude-Krylov pressure, by quadrature.** The incident pressure is integrated over every wet triangle (whole face
 or piece) by the rule with weights 1/12 at each corner and 3/4 at the centroid, exact for polynomials of degree 2
 (error O(h^3) per unit area for panels of size h). The field is evaluated at the corners only, value and gradient
-(``wecss.compiled._wave_field`` gives both at about the cost of the value): the centroid's value is taken as
+(``wecss.compiled._wave_field`` gives both in one pass over its coefficients): the centroid's value is taken as
 mean_i(h_i + (m - r_i) . grad h_i / 2) over the corners r_i, which is exact for a quadratic h (for one, h(m) =
 h_i + (m - r_i) . grad h_i + (m - r_i)' H (m - r_i) / 2 and mean_i h_i = h(m) + mean_i (m - r_i)' H (m - r_i) / 2),
 so the rule keeps its degree. The corners' values are computed once per vertex and shared by the faces around it;
