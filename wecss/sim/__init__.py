@@ -28,4 +28,5 @@ from ._linear import simulate_linear as simulate_linear
 from ._progress import format_seconds as format_seconds
 from ._record import Record as Record
 from ._record import window_statistics as window_statistics
+from ._reproduce import scene_from_result as scene_from_result
 from ._simulate import simulate as simulate

@@ -10,9 +10,10 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
-from ..compiled import JIT
-from ..control import ControlledScene
+from ..compiled import JIT, SHIPPED_DATA_DIR, device_spec_path, recorded_inputs
+from ..control import ControlledScene, controller_attrs
 from ..control.design import PowerBound
+from ..provenance import INPUTS_ATTR, SPEC_ATTR, input_records
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
 from ._record import Record
@@ -46,6 +47,16 @@ def sea_state_attrs(controlled: ControlledScene) -> dict[str, Any]:
     return out
 
 
+def input_attrs(controlled: ControlledScene) -> dict[str, str]:
+    """The run's input files with their SHA-256 (``input_files``, JSON; ``wecss.provenance``) and the device
+    spec's text as read (``device_spec``)."""
+    spec = device_spec_path(controlled.scene)
+    return {
+        INPUTS_ATTR: json.dumps(input_records(recorded_inputs(controlled.scene), SHIPPED_DATA_DIR)),
+        SPEC_ATTR: spec.read_text(encoding="utf-8-sig") if spec is not None else "",
+    }
+
+
 def _notes(controlled: ControlledScene, report: dict[str, Any], motion: list[str], record: Record) -> list[str]:
     notes = [*controlled.notes, *fit_notes(controlled), *step_notes(controlled), *wave_notes(controlled), *motion]
     notes += pressure_notes(controlled, record.pressure_flags)
@@ -55,6 +66,12 @@ def _notes(controlled: ControlledScene, report: dict[str, Any], motion: list[str
             "controller force held constant over each step (zero-order hold at the simulation step)"
             if steps == 1
             else f"controller called every {steps} steps ({steps * controlled.dt:.6g} s), its force held in between"
+        )
+    if controlled.controller_given:
+        choice = controlled.scene.controller
+        notes.append(
+            f"the controller given to simulate ({type(controlled.controller).__name__}) ran; the scene's controller "
+            f"section ({choice.name!r}, {dict(choice.parameters)}) was not used"
         )
     if report:
         notes.append(
@@ -95,9 +112,7 @@ def result_attrs(
         "saved_every": scene.outputs.every,
         "statistics_window": scene.outputs.window,
         "radiation": str(controlled.radiation_summary),
-        "controller": scene.controller.name,
-        "controller_class": f"{type(controlled.controller).__module__}.{type(controlled.controller).__qualname__}",
-        "controller_parameters": json.dumps(scene.controller.parameters),
+        **controller_attrs(controlled.controller, given=controlled.controller_given),
         "controller_linear_gains_in_equations": int(controlled.linear_controller),
         "numba": int(JIT),
         "run_time_s": record.run_time,
@@ -110,6 +125,7 @@ def result_attrs(
         if controlled.device.moorings
         else "none",
     }
+    attrs.update(input_attrs(controlled))
     attrs.update({f"controller_{k}": v for k, v in report.items()})
     attrs.update(record.solver)  # each run describes its own solver (and its radiation model where it has its own)
     attrs.update(sea_state_attrs(controlled))

@@ -1,0 +1,87 @@
+"""A run made again from its result file (``wecss run --from RESULT.nc``): the recorded scene, its input files
+found and checked against their SHA-256 (``wecss.provenance``), and the controller that ran, made again from its
+registered name and recorded parameters."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+from pathlib import Path
+
+from ..compiled import SHIPPED_DATA_DIR
+from ..control import UNREGISTERED, create, registered_name
+from ..netcdf import global_attributes
+from ..provenance import INPUTS_ATTR, find_inputs
+from ..scene import ControllerChoice, Scene
+
+SCENE_PATH_FIELDS = (("device", "name"), ("device", "hydro"), ("sea", "file"))
+"""The scene fields that may hold a file's path."""
+
+
+def scene_from_result(path: str | os.PathLike[str]) -> tuple[Scene, list[str]]:
+    """The scene that makes the run of the result file ``path`` again, and what was found on the way (inputs
+    moved beside the result, a result that records no checksums).
+
+    Every input file the result records must have its recorded SHA-256, where the run read it or at its path
+    relative to the result (a folder moved as a whole); the scene's paths then point at the files found. A
+    controller given to ``simulate`` becomes the scene's ``controller`` section when its class is registered
+    (``wecss.controllers`` entry points) and its parameters were recorded.
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no file at ``path``.
+    ValueError
+        If the file is not a complete wecss result; if an input file changed or is missing
+        (``wecss.provenance.InputChangedError``: the file and both SHA-256); if the controller that ran cannot be
+        made again by name (the message names its class and parameters).
+    """
+    if not Path(path).is_file():
+        raise FileNotFoundError(f"no result file at {str(path)!r}")
+    attrs = global_attributes(path)
+    if "scene" not in attrs:
+        raise ValueError(f"{str(path)!r} is not a wecss result (no 'scene' attribute): nothing to run again")
+    if "run_status" in attrs:
+        raise ValueError(f"{str(path)!r} is a partial result ({attrs['run_status']}); run its scene again instead")
+    found: list[str] = []
+    if INPUTS_ATTR not in attrs:
+        found.append(
+            f"{str(path)!r} records no input files (made before wecss recorded them): its inputs are not checked"
+        )
+    data = json.loads(str(attrs["scene"]))
+    moved = {str(f.recorded): f for f in find_inputs(attrs, path, SHIPPED_DATA_DIR) if f.moved}
+    for section, key in SCENE_PATH_FIELDS:
+        value = data.get(section, {}).get(key)
+        if isinstance(value, str) and value in moved:
+            data[section][key] = str(moved[value].found)
+    found += [f"the {f.field} was not at {str(f.recorded)!r}; found at {str(f.found)!r}" for f in moved.values()]
+    scene = Scene.from_dict(data)
+    if attrs.get("controller_source", "scene") != "scene":
+        scene = dataclasses.replace(scene, controller=_given_controller(attrs, scene.controller.dt))
+    return scene, found
+
+
+def _given_controller(attrs: dict[str, object], dt: float | str | None) -> ControllerChoice:
+    """The scene's controller section for a controller that was given to ``simulate``."""
+    name, cls = str(attrs.get("controller")), str(attrs.get("controller_class"))
+    parameters = json.loads(str(attrs.get("controller_parameters", "{}")))
+    how = f"run the scene from Python: simulate(scene, controller={cls}(**{parameters}))"
+    if name == UNREGISTERED:
+        raise ValueError(
+            f"this run's controller was given to simulate: class {cls}, parameters {parameters}; it is not "
+            f"registered (entry-point group wecss.controllers), so --from cannot make it: {how}"
+        )
+    opaque = str(attrs.get("controller_parameters_opaque", ""))
+    if opaque:
+        raise ValueError(
+            f"this run's controller ({name!r}, class {cls}) was given to simulate with parameters that the file "
+            f"cannot hold ({opaque}): {how}"
+        )
+    now = create(name, **parameters)
+    if registered_name(now) != name or f"{type(now).__module__}.{type(now).__qualname__}" != cls:
+        raise ValueError(
+            f"the controller name {name!r} now makes {type(now).__module__}.{type(now).__qualname__}, not the class "
+            f"that ran ({cls}): {how}"
+        )
+    return ControllerChoice(name=name, parameters=parameters, dt=dt)
