@@ -12,9 +12,9 @@ import numpy as np
 from .. import __version__
 from ..compiled import JIT, SHIPPED_DATA_DIR, device_spec_path, recorded_inputs
 from ..control import ControlledScene, controller_attrs
-from ..control.design import PowerBound
 from ..provenance import INPUTS_ATTR, SPEC_ATTR, input_records
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
+from ._bound_window import SHARE_TOLERANCE
 from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
 from ._record import Record
 
@@ -88,12 +88,13 @@ def result_attrs(
     *,
     later_notes: list[str],
     mean_power: np.ndarray | None,
-    bound: PowerBound | None,
+    bound: tuple[np.ndarray, np.ndarray] | None,
     closure: float | None,
 ) -> dict[str, Any]:
     """The attributes of a run's Dataset. ``motion``: the notes on the record's motion; ``later_notes``: notes
-    made while the variables were (the power bound's); ``mean_power``: the mean power per PTO (for the share of
-    the power ``bound``); ``closure``: the loads' closure residual where they were recovered."""
+    made while the variables were (the power bound's); ``mean_power``: the mean power per PTO [W];
+    ``bound``: the power bound per PTO over the run's window and its spectral expectation [W], for the shares;
+    ``closure``: the loads' closure residual where they were recovered."""
     scene = controlled.scene
     n_steps = controlled.n_steps
     report = controlled.controller.report() if controlled.device.ptos else {}
@@ -138,5 +139,31 @@ def result_attrs(
         attrs["radiation_fit_stable"] = int(fit["stable"])
         attrs["radiation_fit_repair"] = str(fit["repair"])
     if bound is not None and mean_power is not None:
-        attrs["share_of_power_bound"] = float(np.sum(mean_power) / bound.total)
+        attrs.update(bound_shares(np.sum(mean_power), *bound))
+        notes = bound_notes(attrs)
+        if notes:
+            attrs["notes"] = "; ".join(n for n in (attrs["notes"], *notes) if n != "none")
     return attrs
+
+
+def bound_shares(total: float, window: np.ndarray, spectral: np.ndarray) -> dict[str, float]:
+    """The run's total mean power ``total`` [W] as shares of the complex-conjugate bound over its own record and
+    window (``share_of_power_bound``) and of its spectral expectation (``share_of_power_bound_spectral``), with the
+    tolerance above 1 that the first may reach without a note."""
+    return {
+        "share_of_power_bound": float(total / np.sum(window)),
+        "share_of_power_bound_spectral": float(total / np.sum(spectral)),
+        "share_of_power_bound_tolerance": SHARE_TOLERANCE,
+    }
+
+
+def bound_notes(attrs: dict[str, Any]) -> list[str]:
+    """A note when the run's share of the bound on its own record and window exceeds 1 beyond its tolerance."""
+    share, tolerance = attrs["share_of_power_bound"], attrs["share_of_power_bound_tolerance"]
+    if not share > 1 + tolerance:
+        return []
+    return [
+        f"mean absorbed power is {share:.4g} times the complex-conjugate bound on the same record and window (more "
+        f"than 1 + {tolerance:g}): the linear model's bound does not hold for this run (nonlinear forces, a time "
+        "step too long for the power, or energy stored in the device at the window's ends)"
+    ]
