@@ -254,8 +254,18 @@ def _run(
     )
     if not quiet:
         print(f"{'scene of the result' if from_result else 'scene'} {path}", file=sys.stderr)
+    runnable: Any = scene
+    if from_result is not None:  # compiled first: its radiation fit against the run's
+        from .control import compile_scene
+        from .netcdf import global_attributes
+        from .sim import fit_difference
+
+        runnable = compile_scene(scene)
+        difference = fit_difference(global_attributes(path), runnable)
+        if difference is not None:
+            print(f"wecss: warning: {difference}", file=sys.stderr)
     # written as the run goes (Beeman, RK4: streamed, memory flat); the series are read back for the plot alone
-    with simulate(scene, progress=not quiet, path=out, compress=compress, float32=float32) as ds:
+    with simulate(runnable, progress=not quiet, path=out, compress=compress, float32=float32) as ds:
         plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))
         if plotted:  # the summary plot needs the elevation or the PTO series
             import matplotlib.pyplot as plt

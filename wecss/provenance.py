@@ -16,6 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 INPUTS_ATTR = "input_files"
 """The result attribute holding the JSON list of input files."""
 
@@ -29,6 +31,16 @@ def sha256(path: str | os.PathLike[str]) -> str:
     with open(path, "rb") as f:
         for block in iter(lambda: f.read(1 << 20), b""):
             digest.update(block)
+    return digest.hexdigest()
+
+
+def array_digest(*arrays: Any) -> str:
+    """The SHA-256 of arrays' shapes and float64 values (a fitted model's matrices), as 64 hexadecimal digits."""
+    digest = hashlib.sha256()
+    for a in arrays:
+        values = np.ascontiguousarray(a, dtype=float)
+        digest.update(repr(values.shape).encode())
+        digest.update(values.tobytes())
     return digest.hexdigest()
 
 

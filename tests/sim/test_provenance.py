@@ -15,6 +15,8 @@ import pytest
 
 from controllers import LinearDamping, OptimalDamping
 from wecss.cli import main
+from wecss.compiled import clear_compile_cache
+from wecss.netcdf import read_netcdf, write_netcdf
 from wecss.results import open_result
 from wecss.sim import Scene, simulate
 
@@ -169,3 +171,35 @@ def test_a_changed_elevation_record_is_refused_naming_it(spec, tmp_path, capsys)
     err = capsys.readouterr().err
     assert "measured elevation record (sea.file) changed since the run" in err
     assert before in err and hashlib.sha256(record.read_bytes()).hexdigest() in err
+
+
+def test_a_radiation_fit_that_changed_in_the_cache_is_named_before_the_run(spec, tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("WECSS_CACHE_DIR", str(tmp_path / "cache"))
+    scene = Scene.from_dict({**_scene(spec).to_dict(), "radiation": {"method": "state_space"}})
+    out = tmp_path / "r.nc"
+    simulate(scene, path=out).close()
+    recorded = open_result(out).attrs["radiation_fit_sha256"]
+    assert len(recorded) == 64
+    assert main(["run", "--from", str(out), "-o", str(tmp_path / "same.nc"), "-q"]) == 0
+    assert "radiation fit differs" not in capsys.readouterr().err  # the same fit, from the cache
+    (entry,) = (tmp_path / "cache" / "radiation").glob("*.nc")
+    fit = read_netcdf(entry)
+    fit["C"] = fit["C"] * 1.001  # another fit in the cache entry (still stable and passive)
+    write_netcdf(fit, entry)
+    clear_compile_cache()  # a new process reads the cache again
+    assert main(["run", "--from", str(out), "-o", str(tmp_path / "again.nc"), "-q"]) == 0
+    err = capsys.readouterr().err
+    assert "warning: the radiation fit differs from the run's" in err and recorded in err
+    assert open_result(tmp_path / "again.nc").attrs["radiation_fit_sha256"] != recorded
+
+
+def test_a_controller_name_that_now_makes_another_class_is_refused(spec, tmp_path, capsys):
+    out = tmp_path / "r.nc"
+    simulate(_scene(spec), path=out).close()
+    ds = read_netcdf(out)
+    ds.attrs["controller_class"] = "theirpackage.Damping"  # a result made where another package registered 'damping'
+    write_netcdf(ds, out)
+    assert main(["run", "--from", str(out), "-o", str(tmp_path / "again.nc"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "was class theirpackage.Damping" in err and "controllers:LinearDamping" not in err
+    assert "now makes controllers.LinearDamping" in err

@@ -12,7 +12,7 @@ import numpy as np
 from .. import __version__
 from ..compiled import JIT, SHIPPED_DATA_DIR, device_spec_path, recorded_inputs
 from ..control import ControlledScene, controller_attrs
-from ..provenance import INPUTS_ATTR, SPEC_ATTR, input_records
+from ..provenance import INPUTS_ATTR, SPEC_ATTR, array_digest, input_records
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 from ._bound_window import SHARE_TOLERANCE
 from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
@@ -45,6 +45,16 @@ def sea_state_attrs(controlled: ControlledScene) -> dict[str, Any]:
         if sea.period is not None:
             out["peak_period"] = float(sea.period)
     return out
+
+
+FIT_ATTR = "radiation_fit_sha256"
+"""The result attribute holding the SHA-256 of the radiation fit's matrices (:func:`fit_digest`)."""
+
+
+def fit_digest(controlled: ControlledScene) -> str:
+    """The SHA-256 of the state-space radiation fit's matrices A, B, C ("" without a fit)."""
+    fit = controlled.radiation_fit
+    return "" if fit is None else array_digest(fit.model.A, fit.model.B, fit.model.C)
 
 
 def input_attrs(controlled: ControlledScene) -> dict[str, str]:
@@ -138,6 +148,7 @@ def result_attrs(
         attrs["radiation_fit_passive"] = int(fit.get("passive", float(fit["passivity_margin"]) >= 0))
         attrs["radiation_fit_stable"] = int(fit["stable"])
         attrs["radiation_fit_repair"] = str(fit["repair"])
+        attrs[FIT_ATTR] = fit_digest(controlled)
     if bound is not None and mean_power is not None:
         attrs.update(bound_shares(np.sum(mean_power), *bound))
         notes = bound_notes(attrs)

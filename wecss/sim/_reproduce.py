@@ -7,13 +7,16 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
+from collections.abc import Mapping
+from importlib.metadata import entry_points
 from pathlib import Path
 
 from ..compiled import SHIPPED_DATA_DIR
-from ..control import UNREGISTERED, create, registered_name
+from ..control import ENTRY_POINT_GROUP, UNREGISTERED, ControlledScene, create, registered_name
 from ..netcdf import global_attributes
 from ..provenance import INPUTS_ATTR, find_inputs
 from ..scene import ControllerChoice, Scene
+from ._attrs import FIT_ATTR, fit_digest
 
 SCENE_PATH_FIELDS = (("device", "name"), ("device", "hydro"), ("sea", "file"))
 """The scene fields that may hold a file's path."""
@@ -59,7 +62,38 @@ def scene_from_result(path: str | os.PathLike[str]) -> tuple[Scene, list[str]]:
     scene = Scene.from_dict(data)
     if attrs.get("controller_source", "scene") != "scene":
         scene = dataclasses.replace(scene, controller=_given_controller(attrs, scene.controller.dt))
+    elif "controller_class" in attrs:
+        _same_class(scene.controller.name, str(attrs["controller_class"]))
     return scene, found
+
+
+def fit_difference(attrs: Mapping[str, object], controlled: ControlledScene) -> str | None:
+    """What differs between the radiation fit a result records (``radiation_fit_sha256``) and the fit of
+    ``controlled`` (its scene compiled again), or None. A fit is made again from the (checked) database when the
+    cache does not hold it, or a damaged cache entry was replaced: its matrices may then differ in their last bits."""
+    recorded = attrs.get(FIT_ATTR)
+    now = fit_digest(controlled)
+    if not recorded or recorded == now:
+        return None
+    return (
+        f"the radiation fit differs from the run's (SHA-256 of its matrices {now or 'none'}, the run's {recorded}): "
+        "it was made again or replaced in the fit cache; the results may differ"
+    )
+
+
+def _same_class(name: str, recorded: str) -> None:
+    """Refuse a controller name that now makes another class than the one that ran."""
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        if ep.name == name:
+            module, _, attr = ep.value.partition(":")
+            now = f"{module}.{attr}"
+            loaded = ep.load()
+            if recorded not in (now, f"{loaded.__module__}.{loaded.__qualname__}"):
+                raise ValueError(
+                    f"the controller {name!r} of this run was class {recorded}; the name now makes {now}: install the "
+                    "package that registered it, or run the scene from Python with that class"
+                )
+            return
 
 
 def _given_controller(attrs: dict[str, object], dt: float | str | None) -> ControllerChoice:
