@@ -126,6 +126,22 @@ def test_inputs_moved_with_the_result_are_found_by_their_relative_path(spec, tmp
     np.testing.assert_array_equal(open_result(moved / "r.nc").pto_power.values, open_result(again).pto_power.values)
 
 
+def test_a_relative_path_in_the_scene_runs_the_checked_file_not_one_of_that_name_here(
+    spec, tmp_path, capsys, monkeypatch
+):
+    monkeypatch.chdir(spec.parent)  # the scene names its spec relative to the folder the run is made in
+    out = spec.parent / "r.nc"
+    simulate(Scene.from_dict({**_scene(spec).to_dict(), "device": {"name": spec.name}}), path=out).close()
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / spec.name).write_text(spec.read_text().replace("mass = 17.52", "mass = 30.0"))
+    monkeypatch.chdir(elsewhere)  # another spec of that name here: the run must read the one it checked
+    assert main(["run", "--from", str(out), "-o", "again.nc", "-q"]) == 0
+    a, b = open_result(out), open_result(elsewhere / "again.nc")
+    np.testing.assert_array_equal(a.pto_power.values, b.pto_power.values)
+    assert _records(b)["device spec of device.name"]["path"] == str(spec.resolve())
+
+
 def test_a_custom_controller_names_the_class_it_needs(spec, tmp_path, capsys):
     out = tmp_path / "r.nc"
     simulate(_scene(spec), controller=HeldDamping(damping=30.0), path=out).close()

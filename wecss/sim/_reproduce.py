@@ -18,8 +18,19 @@ from ..provenance import INPUTS_ATTR, find_inputs
 from ..scene import ControllerChoice, Scene
 from ._attrs import FIT_ATTR, fit_digest
 
-SCENE_PATH_FIELDS = (("device", "name"), ("device", "hydro"), ("sea", "file"))
-"""The scene fields that may hold a file's path."""
+SCENE_PATH_FIELDS = {
+    ("device", "name"): "device spec of device.name",
+    ("device", "hydro"): "hydrodynamic database (device.hydro)",
+    ("sea", "file"): "(sea.file)",
+}
+"""The scene fields that may hold a file's path, each with the end of the field of its input record
+(``wecss.compiled.recorded_inputs``)."""
+
+
+def _is_path(key: str, value: object) -> bool:
+    """Whether a scene value names a file (``sea.file`` always; a device or database when it looks like a path),
+    not a catalogue or shipped name (as ``Scene.from_dict`` decides)."""
+    return isinstance(value, str) and (key == "file" or "/" in value or value.endswith((".toml", ".nc", ".out")))
 
 
 def scene_from_result(path: str | os.PathLike[str]) -> tuple[Scene, list[str]]:
@@ -53,12 +64,14 @@ def scene_from_result(path: str | os.PathLike[str]) -> tuple[Scene, list[str]]:
             f"{str(path)!r} records no input files (made before wecss recorded them): its inputs are not checked"
         )
     data = json.loads(str(attrs["scene"]))
-    moved = {str(f.recorded): f for f in find_inputs(attrs, path, SHIPPED_DATA_DIR) if f.moved}
-    for section, key in SCENE_PATH_FIELDS:
+    inputs = find_inputs(attrs, path, SHIPPED_DATA_DIR)
+    for (section, key), ending in SCENE_PATH_FIELDS.items():
         value = data.get(section, {}).get(key)
-        if isinstance(value, str) and value in moved:
-            data[section][key] = str(moved[value].found)
-    found += [f"the {f.field} was not at {str(f.recorded)!r}; found at {str(f.found)!r}" for f in moved.values()]
+        checked = next((f for f in inputs if f.field.endswith(ending)), None)
+        # the scene's path may be relative to the folder the run was made in: it then points at the checked file
+        if checked is not None and _is_path(key, value):
+            data[section][key] = str(checked.found)
+    found += [f"the {f.field} was not at {str(f.recorded)!r}; found at {str(f.found)!r}" for f in inputs if f.moved]
     scene = Scene.from_dict(data)
     if attrs.get("controller_source", "scene") != "scene":
         scene = dataclasses.replace(scene, controller=_given_controller(attrs, scene.controller.dt))
