@@ -16,14 +16,14 @@ from wecss.sim._attrs import bound_notes
 FLOAT = Path(__file__).parents[1] / "control" / "heaving_float.toml"
 
 
-def _run(sea: dict, window: float):
+def _run(sea: dict, window: float, dt: float | str = 0.03):
     return simulate(
         Scene.from_dict(
             {
                 "device": {"name": str(FLOAT)},
                 "sea": sea,
                 "controller": {"name": "damping", "parameters": {"damping": 40.0}},
-                "solver": {"dt": 0.03},
+                "solver": {"dt": dt},
                 "radiation": {"method": "none"},
                 "outputs": {"variables": ["pto"], "window": window},
             }
@@ -37,6 +37,14 @@ def test_a_window_of_whole_periods_of_a_regular_wave_has_the_spectral_bound():
     ds = _run({"kind": "regular", "height": 0.02, "period": 1.2, "duration": 12.0, "ramp": 2.4}, 0.5)
     np.testing.assert_allclose(ds.power_bound.values, ds.power_bound_spectral.values, rtol=1e-9)
     assert ds.attrs["share_of_power_bound"] == pytest.approx(ds.attrs["share_of_power_bound_spectral"], rel=1e-9)
+
+
+@pytest.mark.parametrize("period", [0.7, 0.9, 1.4, 1.8])
+def test_whole_periods_on_the_windows_grid_to_rounding_have_the_spectral_bound(period):
+    # 10 periods at T/50, the last half: 5 whole periods, whose frequency lies on the window's grid only to rounding
+    sea = {"kind": "regular", "height": 0.02, "period": period, "duration": "10 Tp", "ramp": "2 Tp"}
+    ds = _run(sea, 0.5, "Tp/50")
+    np.testing.assert_allclose(ds.power_bound.values, ds.power_bound_spectral.values, rtol=1e-9)
 
 
 def test_over_the_whole_record_an_irregular_sea_has_the_spectral_bound_and_over_its_last_half_its_own():

@@ -27,6 +27,11 @@ NEGLIGIBLE_SHARE: float = 1e-9
 the hydrodynamic DOFs) are left out of the bound."""
 
 
+BAND_EDGE: float = 1e-6
+"""How far outside the band of the scene's wave components a Fourier component of the window may lie and still
+count (as a share of the window's frequency step): rounding, not leakage."""
+
+
 def window_components(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarray]:
     """The Fourier components of the excitation over the run's statistics window: frequencies 2 pi m / T [rad/s]
     (T the window's length: its steps times the step; the mean and the Nyquist term left out) within the band of
@@ -40,9 +45,12 @@ def window_components(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarr
     n = time.size
     omega = 2 * np.pi * np.arange(n // 2 + 1) / (n * controlled.dt)
     amplitude = 2 * np.fft.rfft(exc.force(time), axis=1) / n * np.exp(-1j * omega * time[0])[None, :]
-    band = exc.omega
+    # the band's ends widened by a small share of the window's frequency step: a window of whole periods of a
+    # regular wave has its frequency on the window's grid only to rounding
+    edge = BAND_EDGE * 2 * np.pi / (n * controlled.dt)
     energy = np.sum(np.abs(amplitude) ** 2, axis=0)
-    keep = (omega > 0) & (np.arange(omega.size) < (n + 1) // 2) & (omega >= band.min()) & (omega <= band.max())
+    in_band = (omega >= exc.omega.min() - edge) & (omega <= exc.omega.max() + edge)
+    keep = (omega > 0) & (np.arange(omega.size) < (n + 1) // 2) & in_band
     keep &= energy >= NEGLIGIBLE_SHARE * (energy[keep].max() if keep.any() else 0.0)
     return omega[keep], amplitude[:, keep]
 
