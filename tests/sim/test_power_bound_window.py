@@ -47,6 +47,19 @@ def test_whole_periods_on_the_windows_grid_to_rounding_have_the_spectral_bound(p
     np.testing.assert_allclose(ds.power_bound.values, ds.power_bound_spectral.values, rtol=1e-9)
 
 
+def test_a_window_without_components_in_the_band_keeps_the_spectral_share():
+    # 2.5 periods of a regular wave in the window: its grid misses the wave's frequency, so no bound over the
+    # window (a note says why); the spectral share is still there
+    ds = _run({"kind": "regular", "height": 0.02, "period": 1.2, "duration": 6.0, "ramp": 1.2}, 0.5, 0.006)
+    assert "power_bound" not in ds
+    assert "no complex-conjugate power bound over the statistics window" in ds.attrs["notes"]
+    assert "share_of_power_bound" not in ds.attrs and "share_of_power_bound_tolerance" not in ds.attrs
+    total = float(ds.mean_pto_power.sum())
+    assert ds.attrs["share_of_power_bound_spectral"] == pytest.approx(
+        total / float(ds.power_bound_spectral.sum()), rel=1e-12
+    )
+
+
 def test_over_the_whole_record_an_irregular_sea_has_the_spectral_bound_and_over_its_last_half_its_own():
     sea = {"kind": "jonswap", "height": 0.04, "period": 1.2, "duration": 24.0, "ramp": 0.0, "seed": 3}
     whole = _run(sea, 1.0)  # the components are orthogonal over the record: the window's bound is the spectral one
@@ -67,3 +80,4 @@ def test_a_note_only_when_the_share_exceeds_one_beyond_its_tolerance():
     (note,) = bound_notes({"share_of_power_bound": 1.021, "share_of_power_bound_tolerance": 0.02})
     assert "1.021 times the complex-conjugate bound on the same record and window" in note
     assert "1 + 0.02" in note
+    assert bound_notes({"share_of_power_bound_spectral": 1.5}) == []  # no bound over the window: no share of it

@@ -98,12 +98,13 @@ def result_attrs(
     *,
     later_notes: list[str],
     mean_power: np.ndarray | None,
-    bound: tuple[np.ndarray, np.ndarray] | None,
+    bound: tuple[np.ndarray | None, np.ndarray] | None,
     closure: float | None,
 ) -> dict[str, Any]:
     """The attributes of a run's Dataset. ``motion``: the notes on the record's motion; ``later_notes``: notes
     made while the variables were (the power bound's); ``mean_power``: the mean power per PTO [W];
-    ``bound``: the power bound per PTO over the run's window and its spectral expectation [W], for the shares;
+    ``bound``: the power bound per PTO over the run's window (None where it could not be had) and its spectral
+    expectation [W], for the shares;
     ``closure``: the loads' closure residual where they were recovered."""
     scene = controlled.scene
     n_steps = controlled.n_steps
@@ -157,21 +158,22 @@ def result_attrs(
     return attrs
 
 
-def bound_shares(total: float, window: np.ndarray, spectral: np.ndarray) -> dict[str, float]:
+def bound_shares(total: float, window: np.ndarray | None, spectral: np.ndarray) -> dict[str, float]:
     """The run's total mean power ``total`` [W] as shares of the complex-conjugate bound over its own record and
-    window (``share_of_power_bound``) and of its spectral expectation (``share_of_power_bound_spectral``), with the
-    tolerance above 1 that the first may reach without a note."""
-    return {
-        "share_of_power_bound": float(total / np.sum(window)),
-        "share_of_power_bound_spectral": float(total / np.sum(spectral)),
-        "share_of_power_bound_tolerance": SHARE_TOLERANCE,
-    }
+    window (``share_of_power_bound``, with the tolerance above 1 that it may reach without a note; left out with
+    ``window`` None, where that bound could not be had) and of its spectral expectation
+    (``share_of_power_bound_spectral``)."""
+    shares = {"share_of_power_bound_spectral": float(total / np.sum(spectral))}
+    if window is not None:
+        shares["share_of_power_bound"] = float(total / np.sum(window))
+        shares["share_of_power_bound_tolerance"] = SHARE_TOLERANCE
+    return shares
 
 
 def bound_notes(attrs: dict[str, Any]) -> list[str]:
     """A note when the run's share of the bound on its own record and window exceeds 1 beyond its tolerance."""
-    share, tolerance = attrs["share_of_power_bound"], attrs["share_of_power_bound_tolerance"]
-    if not share > 1 + tolerance:
+    share, tolerance = attrs.get("share_of_power_bound"), attrs.get("share_of_power_bound_tolerance")
+    if share is None or tolerance is None or not share > 1 + tolerance:
         return []
     return [
         f"mean absorbed power is {share:.4g} times the complex-conjugate bound on the same record and window (more "
