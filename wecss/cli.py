@@ -255,15 +255,16 @@ def _run(
     if not quiet:
         print(f"{'scene of the result' if from_result else 'scene'} {path}", file=sys.stderr)
     runnable: Any = scene
-    if from_result is not None:  # compiled first: its radiation fit against the run's
+    if from_result is not None:  # compiled first: its radiation fit and linear gains against the run's
         from .control import compile_scene
         from .netcdf import global_attributes
-        from .sim import fit_difference
+        from .sim import fit_difference, gains_difference
 
         runnable = compile_scene(scene)
-        difference = fit_difference(global_attributes(path), runnable)
-        if difference is not None:
-            print(f"wecss: warning: {difference}", file=sys.stderr)
+        recorded_attrs = global_attributes(path)
+        for difference in (fit_difference(recorded_attrs, runnable), gains_difference(recorded_attrs, runnable)):
+            if difference is not None:
+                print(f"wecss: warning: {difference}", file=sys.stderr)
     # written as the run goes (Beeman, RK4: streamed, memory flat); the series are read back for the plot alone
     with simulate(runnable, progress=not quiet, path=out, compress=compress, float32=float32) as ds:
         plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))

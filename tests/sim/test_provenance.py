@@ -209,6 +209,21 @@ def test_a_radiation_fit_that_changed_in_the_cache_is_named_before_the_run(spec,
     assert open_result(tmp_path / "again.nc").attrs["radiation_fit_sha256"] != recorded
 
 
+def test_gains_that_differ_from_the_recorded_ones_are_named_before_the_run(spec, tmp_path, capsys):
+    damping = [90.0]
+    controller = LinearDamping(damping=damping)
+    damping[0] = 10.0  # changed after the controller was made: it runs 90, its arguments now say 10
+    out = tmp_path / "r.nc"
+    simulate(_scene(spec), controller=controller, path=out).close()
+    assert json.loads(open_result(out).attrs["controller_gains"])["damping"] == [90.0]
+    assert main(["run", "--from", str(out), "-o", str(tmp_path / "again.nc"), "-q"]) == 0
+    err = capsys.readouterr().err
+    assert "warning: the controller's linear gains differ from the run's" in err
+    assert "[10.0]" in err and "[90.0]" in err
+    assert main(["run", "--from", str(tmp_path / "again.nc"), "-o", str(tmp_path / "same.nc"), "-q"]) == 0
+    assert "gains differ" not in capsys.readouterr().err  # the same gains: no warning
+
+
 def test_a_controller_name_that_now_makes_another_class_is_refused(spec, tmp_path, capsys):
     out = tmp_path / "r.nc"
     simulate(_scene(spec), path=out).close()

@@ -29,5 +29,6 @@ from ._progress import format_seconds as format_seconds
 from ._record import Record as Record
 from ._record import window_statistics as window_statistics
 from ._reproduce import fit_difference as fit_difference
+from ._reproduce import gains_difference as gains_difference
 from ._reproduce import scene_from_result as scene_from_result
 from ._simulate import simulate as simulate

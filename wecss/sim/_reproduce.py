@@ -11,8 +11,10 @@ from collections.abc import Mapping
 from importlib.metadata import entry_points
 from pathlib import Path
 
+import numpy as np
+
 from ..compiled import SHIPPED_DATA_DIR
-from ..control import ENTRY_POINT_GROUP, UNREGISTERED, ControlledScene, create, registered_name
+from ..control import ENTRY_POINT_GROUP, UNREGISTERED, ControlledScene, controller_attrs, create, registered_name
 from ..netcdf import global_attributes
 from ..provenance import INPUTS_ATTR, find_inputs
 from ..scene import ControllerChoice, Scene
@@ -91,6 +93,31 @@ def fit_difference(attrs: Mapping[str, object], controlled: ControlledScene) -> 
     return (
         f"the radiation fit differs from the run's (SHA-256 of its matrices {now or 'none'}, the run's {recorded}): "
         "it was made again or replaced in the fit cache; the results may differ"
+    )
+
+
+GAINS_RTOL: float = 1e-9
+"""Relative difference below which the linear gains of a run made again count as the run's (a tuned controller's
+gains on a fit made again)."""
+
+
+def gains_difference(attrs: Mapping[str, object], controlled: ControlledScene) -> str | None:
+    """What differs between the linear gains a result records (``controller_gains``) and those the controller of
+    ``controlled`` (made again and set up) applies, or None. They differ when ``--set`` changed the controller, and
+    when the controller that ran was changed after it was made, or an argument given to it changed afterwards: the
+    result records the arguments it was made with, and the gains it applied."""
+    recorded = attrs.get("controller_gains")
+    if not isinstance(recorded, str):
+        return None
+    text = controller_attrs(controlled.controller, given=controlled.controller_given).get("controller_gains")
+    then, now = json.loads(recorded), None if text is None else json.loads(text)
+    if now is not None and then.keys() == now.keys():
+        pairs = [(np.asarray(then[k], dtype=float), np.asarray(now[k], dtype=float)) for k in then]
+        if all(a.shape == b.shape and np.allclose(b, a, rtol=GAINS_RTOL, atol=0.0) for a, b in pairs):
+            return None
+    return (
+        f"the controller's linear gains differ from the run's (now {now}, the run's {then}): the run's controller "
+        "was changed after it was made, or --set changed it; the results will differ"
     )
 
 
