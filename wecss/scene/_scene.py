@@ -236,14 +236,24 @@ class ControllerChoice:
         Control period [s] or relative ("Tp/20"): the controller is called every ``dt`` and its force held in
         between. A whole number of solver steps; None (default) calls it every step. Controllers with linear
         gains act continuously and ignore it.
+    time_limit : float
+        Wall time [s] one call of the controller's ``compute`` may take (default 60: some 300 times the median
+        cvxpy MPC solve of ``docs/control.md``, 194 ms, yet a hung controller stops within a minute); a call
+        past it stops the run with ``wecss.sim.ControllerTimeout``. ``inf``: no limit. Enforced in the main
+        thread only (``wecss/sim/_watchdog.py``; elsewhere the result's notes say it was not).
     """
 
     name: str = "damping"
     parameters: dict[str, Any] = field(default_factory=dict)
     dt: float | str | None = None
+    time_limit: float = 60.0
 
     def __post_init__(self) -> None:
         check_types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
+        if not self.time_limit > 0:
+            raise SceneError(
+                f"controller.time_limit must be a positive time [s] (inf: no limit); got {self.time_limit!r}"
+            )
         object.__setattr__(self, "parameters", Parameters(self.parameters))
 
 

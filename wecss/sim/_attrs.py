@@ -16,6 +16,7 @@ from ..control.design import PowerBound
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
 from ._record import Record
+from ._watchdog import unenforced
 
 
 def sea_state_attrs(controlled: ControlledScene) -> dict[str, Any]:
@@ -56,6 +57,9 @@ def _notes(controlled: ControlledScene, report: dict[str, Any], motion: list[str
             if steps == 1
             else f"controller called every {steps} steps ({steps * controlled.dt:.6g} s), its force held in between"
         )
+        unwatched = unenforced(controlled.scene.controller.time_limit)
+        if unwatched is not None:
+            notes.append(unwatched)
     if report:
         notes.append(
             "controller: "
