@@ -295,6 +295,9 @@ class Solver:
         the corrector until the accelerations change by less than ``corrector_tol`` (the paper: 0.01), with no
         implicit fallback. Slower, and it converges only where the added mass is smaller than the rigid mass in
         every mode (a run refuses to start otherwise; see ``wecss.sim`` docs, "the paper's method").
+    allow_large : bool or None
+        "reference" only: run it even when it needs more than ``wecss.limits.REFERENCE_EVALUATIONS`` evaluations
+        (a stiff plant: an explicit method's step is bounded by the fastest mode); default None: refused.
     """
 
     method: str = "beeman"
@@ -306,9 +309,12 @@ class Solver:
     reference_rtol: float = 1e-10
     hold: str | None = None
     added_mass: str | None = None
+    allow_large: bool | None = None
 
     def __post_init__(self) -> None:
         check_types("solver", {"method": (self.method, str)})
+        if self.allow_large is not None and not isinstance(self.allow_large, bool):
+            raise SceneError(f"solver.allow_large must be true or false; got {self.allow_large!r}")
         if self.added_mass is not None:
             check_choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
         if self.added_mass == "explicit" or self.method == EXPLICIT_RUNNER:
