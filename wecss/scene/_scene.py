@@ -411,7 +411,8 @@ class Outputs:
     Attributes
     ----------
     variables : sequence of {"motion", "pto", "excitation", "radiation", "elevation", "poses", "loads"}
-        Groups of time series; empty with ``statistics_only``. ``loads`` (not in the default) adds the joint
+        Groups of time series; empty or left out with ``statistics_only`` (other groups with it are refused).
+        ``loads`` (not in the default) adds the joint
         reactions and the PTO loads on both ends, recovered from the record after the run.
     every : int
         Keep every k-th step.
@@ -435,6 +436,12 @@ class Outputs:
             check_choice("outputs.variables", v, OUTPUT_GROUPS)
         if not self.variables and not self.statistics_only:
             raise SceneError("outputs.variables is empty: ask for at least one group or set statistics_only = true")
+        if self.statistics_only and self.variables and self.variables != DEFAULT_OUTPUTS:
+            raise SceneError(
+                f"outputs.statistics_only = true keeps no time series, yet outputs.variables = {list(self.variables)} "
+                "asks for some; accepted: statistics_only = false with the groups, or statistics_only = true with "
+                "variables = [] (or left out)"
+            )
         if not (isinstance(self.every, int) and self.every >= 1):
             raise SceneError(f"outputs.every must be an integer >= 1; got {self.every!r}")
         if not 0 < self.window <= 1:

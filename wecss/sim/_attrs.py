@@ -15,6 +15,7 @@ from ..control import ControlledScene
 from ..control.design import PowerBound
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
+from ._injection import injection_notes
 from ._record import Record
 from ._watchdog import unenforced
 
@@ -84,7 +85,7 @@ def result_attrs(
     scene = controlled.scene
     n_steps = controlled.n_steps
     report = controlled.controller.report() if controlled.device.ptos else {}
-    notes = _notes(controlled, report, motion, record) + later_notes
+    notes = _notes(controlled, report, motion, record) + later_notes + injection_notes(controlled, mean_power)
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {controlled.device.name}",
         "Conventions": "CF-1.10",
