@@ -127,3 +127,29 @@ def test_checked_force_accepts_integers_and_floats_as_they_are():
     assert checked_force([1, 2], 2, 0.0).tolist() == [1.0, 2.0]
     forces = np.array([1.5, -2.0])
     assert checked_force(forces, 2, 0.0) is forces
+
+
+class Stubborn(Controller):
+    """A controller that catches every error in a call that never returns, and goes on waiting."""
+
+    needs_state = False
+
+    def setup(self, context: ControlContext) -> None:
+        self.n, self.caught = context.n_pto, 0
+
+    def compute(self, t: float, measurement: Any) -> np.ndarray:
+        while self.caught < 2:
+            try:
+                time.sleep(3600.0)
+            except Exception:  # the watchdog's first signals: swallowed
+                self.caught += 1
+        time.sleep(3600.0)
+        return np.zeros(self.n)
+
+
+def test_a_compute_that_swallows_the_timeout_is_stopped_again():
+    """Signalled after 0.2 s, 0.4 s and 0.6 s: the third error escapes."""
+    controller = Stubborn()
+    with pytest.raises(ControllerTimeout):
+        simulate(_scene(time_limit=0.2), controller=controller)
+    assert controller.caught == 2
