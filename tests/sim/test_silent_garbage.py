@@ -100,6 +100,21 @@ def test_an_added_mass_1000_times_too_large_is_refused():
         check_against_database("m4-111", list(device.model.bodies), HydroData(ds))
 
 
+def test_a_scene_whose_device_names_a_scaled_or_thin_database_is_refused(tmp_path):
+    """The same checks reached from a scene: the device spec names a database file with the added mass scaled by
+    1000, then one of two frequencies."""
+    _, hydro = _m4_111()
+    scaled = hydro.dataset.copy()
+    scaled["added_mass_inf"] = scaled.added_mass_inf * 1000.0
+    HydroData(scaled).to_netcdf(tmp_path / "scaled.nc")
+    HydroData(hydro.dataset.isel(omega=[50, 100])).to_netcdf(tmp_path / "two.nc")
+    for database, match in (("scaled.nc", r"added mass in surge .* accepted: up to 100 times"),
+                            ("two.nc", "has 2 frequencies; accepted: at least 10")):  # fmt: skip
+        device = _spec(tmp_path, "m4-111", ('hydro = "m4-111"', f'hydro = "{tmp_path / database}"'))
+        with pytest.raises(SceneError, match=match):
+            _compile(device)
+
+
 def test_a_database_of_two_frequencies_is_refused():
     device, hydro = _m4_111()
     two = HydroData(hydro.dataset.isel(omega=[50, 100]))
