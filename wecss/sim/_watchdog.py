@@ -7,9 +7,9 @@ of the 11 us a controller call costs on the test scene). So each call only write
 slot (one clock read, well under a microsecond), and a daemon thread, one per process, reads the slot every
 ``POLL_S`` seconds; when a call has run past its limit it sends SIGALRM to the main thread, whose handler raises
 the error inside the stuck call (and again after every further limit, should the call catch it and carry on). The
-signal is sent only then: a normal run sees no signal and pays nothing else. The handler is installed by the first
-run with a sampled controller and left in place (installing it costs some 10 us, too much per call); a SIGALRM the
-watchdog did not send gets its default action, as without it.
+signal is sent only then: a normal run sees no signal and pays nothing else. The handler is installed once per run
+with a sampled controller and left in place after it (installing it costs some 10 us, too much per call); a SIGALRM
+the watchdog did not send gets its default action, as without it.
 
 Limits: a signal handler runs between Python bytecodes, so a ``compute`` stuck inside compiled code (a C extension
 that never returns to Python) is stopped only when it does; a blocking system call such as ``time.sleep`` is
