@@ -5,6 +5,7 @@ from ._beam_modes import beam_frequencies as beam_frequencies
 from ._catalogue import DEVICE_DIR as DEVICE_DIR
 from ._catalogue import available as available
 from ._catalogue import load as load
+from ._database_checks import check_against_database as check_against_database
 from ._device import Device as Device
 from ._flexible import BodyMass as BodyMass
 from ._flexible import Flexible as Flexible

@@ -22,6 +22,7 @@ from ..scene import SeaState as SeaState
 from ..scene import Solver as Solver
 from ..scene import default_scene_path as default_scene_path
 from ._dataset import build_result as build_result
+from ._errors import ControllerTimeout as ControllerTimeout
 from ._errors import PtoLimitExceeded as PtoLimitExceeded
 from ._errors import SimulationDiverged as SimulationDiverged
 from ._linear import simulate_linear as simulate_linear

@@ -16,7 +16,9 @@ from ..provenance import INPUTS_ATTR, SPEC_ATTR, array_digest, input_records
 from ..waves import energy_flux, energy_period, group_velocity, mean_period
 from ._bound_window import SHARE_TOLERANCE
 from ._guards import fit_notes, pressure_notes, step_notes, wave_notes
+from ._injection import injection_notes
 from ._record import Record
+from ._watchdog import unenforced
 
 
 def sea_state_attrs(controlled: ControlledScene) -> dict[str, Any]:
@@ -77,6 +79,9 @@ def _notes(controlled: ControlledScene, report: dict[str, Any], motion: list[str
             if steps == 1
             else f"controller called every {steps} steps ({steps * controlled.dt:.6g} s), its force held in between"
         )
+        unwatched = unenforced(controlled.scene.controller.time_limit)
+        if unwatched is not None:
+            notes.append(unwatched)
     if controlled.controller_given:
         choice = controlled.scene.controller
         notes.append(
@@ -109,7 +114,7 @@ def result_attrs(
     scene = controlled.scene
     n_steps = controlled.n_steps
     report = controlled.controller.report() if controlled.device.ptos else {}
-    notes = _notes(controlled, report, motion, record) + later_notes
+    notes = _notes(controlled, report, motion, record) + later_notes + injection_notes(controlled, mean_power)
     attrs: dict[str, Any] = {
         "title": f"wecss simulation of {controlled.device.name}",
         "Conventions": "CF-1.10",
