@@ -22,6 +22,7 @@ from wecss.control.mpc import (
     measured_rms,
     pto_referred,
 )
+from wecss.limits import MPC_PLANNED_FORCES, LimitError, beyond
 from wecss.linear import LinearModel
 from wecss.radiation import truncate_to_error
 
@@ -88,6 +89,10 @@ class MPC(Controller):
         grid past the data and the control period's Nyquist frequency). 0 keeps every state. The plan's model
         only: the simulation keeps its own. On m4-111 (perfect preview, N = 20) the mean power moved by 0.05 %
         at 1e-3 (93 of 350 states) and 1.2 % at 1e-2 (60 states).
+    allow_large : bool
+        Plan more than ``wecss.limits.MPC_PLANNED_FORCES`` (2000) forces (``horizon`` x PTOs) all the same
+        (default False: such a plan is refused, by the horizon alone when it passes the limit with one PTO, else at
+        setup; its dense matrices grow as the square of the forces and a solve as up to their cube).
 
     Notes
     -----
@@ -100,6 +105,8 @@ class MPC(Controller):
     ValueError
         On bad parameters; at setup in calm water, with a scene whose radiation memory is a convolution (no
         state space: use radiation.method = "state_space"), or with a rate limit of the wrong size.
+    wecss.limits.LimitError
+        (a ValueError) For a plan of more than ``MPC_PLANNED_FORCES`` forces without ``allow_large``.
     """
 
     def __init__(
@@ -114,9 +121,14 @@ class MPC(Controller):
         cvxpy_solver: str = "OSQP",
         ar_order: int = 30,
         radiation_error: float = 1e-3,
+        allow_large: bool = False,
     ) -> None:
         if not (isinstance(horizon, int) and horizon >= 1):
             raise ValueError(f"horizon must be a whole number of control periods >= 1; got {horizon!r}")
+        if not isinstance(allow_large, bool):
+            raise ValueError(f"allow_large must be true or false; got {allow_large!r}")
+        self.horizon, self.allow_large = horizon, allow_large
+        self._check_size(1)
         if preview not in PREVIEWS:
             raise ValueError(f"preview must be one of {PREVIEWS}; got {preview!r}")
         if force_penalty is None:
@@ -152,10 +164,27 @@ class MPC(Controller):
         self.fallbacks = 0
         self.largest_slack = 0.0
 
+    def _check_size(self, n_pto: int) -> None:
+        """Refuse a plan of more than MPC_PLANNED_FORCES forces (``horizon`` x ``n_pto``) without allow_large."""
+        forces = self.horizon * n_pto
+        if forces > MPC_PLANNED_FORCES and not self.allow_large:
+            pto = "PTO" if n_pto == 1 else "PTOs"
+            raise LimitError(
+                beyond(
+                    "horizon",
+                    f"{self.horizon} control periods (x {n_pto} {pto}: {forces} planned forces)",
+                    f"{MPC_PLANNED_FORCES} planned forces (horizon <= {MPC_PLANNED_FORCES // n_pto} here)",
+                    f"the plan's dense matrices grow as the square of its forces, {8 * forces**2 / 1e9:.3g} GB "
+                    "each, and a solve as up to their cube",
+                    "give allow_large = true among the controller's parameters",
+                )
+            )
+
     def setup(self, context: ControlContext) -> None:
         exc = context.excitation
         if exc is None or exc.omega.size == 0:
             raise ValueError("mpc plans with the sea state's excitation; the scene's sea is calm")
+        self._check_size(context.n_pto)
         period, steps = context.control_period, self.horizon
         model = self._reduced(context.linear_model(), period)
         self.preview_horizon = steps * period if self.preview == "perfect" else None

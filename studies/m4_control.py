@@ -108,7 +108,7 @@ def run_all(device: str, periods: tuple[float, ...], duration: str, controllers:
                 row = {
                     "tp": period, "controller": label, "model": kind, "power": power, "total": float(np.sum(power)),
                     "cwr": float(capture_width_ratio(ds)), "rms": ds.rms_pto_angle.values,
-                    "share": float(ds.attrs["share_of_power_bound"]),
+                    "share": float(ds.attrs["share_of_power_bound_spectral"]),
                     "ceiling": float("nan") if optimum is None else float(np.sum(power)) / optimum,
                     "stop_time": float(np.sum(ds.stroke_limit_time.values)), "seconds": seconds,
                     "fallbacks": ds.attrs.get("controller_fallbacks", "-"),

@@ -164,12 +164,12 @@ def main() -> None:
             score = wecccomp_score(ds, start=min(25.0, 0.5 * float(ds.time.values[-1])))
             fallbacks = ds.attrs.get("controller_fallbacks", "-")
             scores[state, label] = score
-            bounds[state] = score["mean_absorbed_power"] / float(ds.attrs["share_of_power_bound"])
+            bounds[state] = score["mean_absorbed_power"] / float(ds.attrs["share_of_power_bound_spectral"])
             share = "n/a" if optimum is None else f"{score['mean_absorbed_power'] / optimum:.3f}"
             print(
                 f"| {state} | {label} | {score['ec']:.4f} | {score['mean_electrical_power']:.4f} | "
                 f"{score['mean_absorbed_power']:.4f} | {score['force_98']:.1f} | {score['stroke_98']:.4f} | "
-                f"{ds.attrs['share_of_power_bound']:.3f} | {share} | {fallbacks} | {seconds:.1f} |",
+                f"{ds.attrs['share_of_power_bound_spectral']:.3f} | {share} | {fallbacks} | {seconds:.1f} |",
                 flush=True,
             )
     print()

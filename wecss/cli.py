@@ -6,7 +6,8 @@ periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic data
 
 ``wecss run [SCENE.toml] [-o RESULT.nc]`` simulates a scene (without one: the embedded default, M4 134 in a
 JONSWAP sea) and writes the result and a PNG summary plot; ``--set sea.period=1.4`` overrides a scene value (dotted
-paths, validated by the scene). ``wecss plot RESULT.nc`` plots a result.
+paths, validated by the scene). ``wecss run --from RESULT.nc`` runs a result's recorded scene and controller again
+after checking its input files' SHA-256 (``wecss.sim.scene_from_result``). ``wecss plot RESULT.nc`` plots a result.
 
 ``wecss modes DEVICE`` prints the natural modes of a device with its flexible bodies, in air and in water
 (``wecss.devices.structural_modes``): frequency, damping ratio and the in-plane / out-of-plane / torsion shares of
@@ -223,25 +224,49 @@ def _run(
     *,
     compress: int = 0,
     float32: bool = False,
+    from_result: str | None = None,
 ) -> int:
     from .compiled import scene_inputs
     from .netcdf import partial_path
     from .results import plot_summary
-    from .sim import Scene, default_scene_path, simulate
+    from .sim import Scene, default_scene_path, scene_from_result, simulate
     from .sweep import apply_overrides
 
-    path = Path(scene_path) if scene_path else default_scene_path()
-    scene = apply_overrides(Scene.from_toml(path), overrides)
-    out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
+    if from_result is not None:
+        if scene_path is not None:
+            raise ValueError(f"give a scene file or --from RESULT.nc, not both; got {scene_path!r} and {from_result!r}")
+        path = Path(from_result)
+        recorded, found = scene_from_result(path)  # inputs checked against their SHA-256
+        for line in found:
+            print(f"wecss: {line}", file=sys.stderr)
+        scene = apply_overrides(recorded, overrides)
+        inputs = {"result file read by --from": path, **scene_inputs(scene)}
+        out = Path(output) if output else Path(f"{path.stem}-rerun.nc")
+    else:
+        path = Path(scene_path) if scene_path else default_scene_path()
+        scene = apply_overrides(Scene.from_toml(path), overrides)
+        inputs = {"scene file": path, **scene_inputs(scene)}
+        out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
     picture = Path(png) if png else out.with_suffix(".png")
     check_outputs(
         {"result": (out, ".nc"), "partial result": (partial_path(out), ".nc"), "picture": (picture, ".png")},
-        inputs={"scene file": path, **scene_inputs(scene)},
+        inputs=inputs,
     )
     if not quiet:
-        print(f"scene {path}", file=sys.stderr)
+        print(f"{'scene of the result' if from_result else 'scene'} {path}", file=sys.stderr)
+    runnable: Any = scene
+    if from_result is not None:  # compiled first: its radiation fit and linear gains against the run's
+        from .control import compile_scene
+        from .netcdf import global_attributes
+        from .sim import fit_difference, gains_difference
+
+        runnable = compile_scene(scene)
+        recorded_attrs = global_attributes(path)
+        for difference in (fit_difference(recorded_attrs, runnable), gains_difference(recorded_attrs, runnable)):
+            if difference is not None:
+                print(f"wecss: warning: {difference}", file=sys.stderr)
     # written as the run goes (Beeman, RK4: streamed, memory flat); the series are read back for the plot alone
-    with simulate(scene, progress=not quiet, path=out, compress=compress, float32=float32) as ds:
+    with simulate(runnable, progress=not quiet, path=out, compress=compress, float32=float32) as ds:
         plotted = "time" in ds.dims and any(name in ds for name in ("wave_elevation", "pto_power"))
         if plotted:  # the summary plot needs the elevation or the PTO series
             import matplotlib.pyplot as plt
@@ -376,7 +401,17 @@ def build_parser() -> argparse.ArgumentParser:
     )
     run = sub.add_parser("run", help="simulate a scene (default: the embedded M4 134 scene)")
     run.add_argument("scene", nargs="?", help="scene file (.toml); without it the embedded default runs")
-    run.add_argument("-o", "--output", help="result file (.nc); default: <scene name>.nc in this folder")
+    run.add_argument(
+        "--from",
+        dest="from_result",
+        metavar="RESULT.nc",
+        help="run again the scene and controller recorded in a result file, after checking that every input file "
+        "it records (device spec, database, elevation record) has the same SHA-256 (found where the run read it "
+        "or where it moved with the result); a changed file is an error naming it and both checksums",
+    )
+    run.add_argument(
+        "-o", "--output", help="result file (.nc); default: <scene name>.nc, with --from <result>-rerun.nc, here"
+    )
     run.add_argument("--png", help="summary plot (.png); default: next to the result")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     _storage_options(run)
@@ -443,7 +478,14 @@ def _command(args: argparse.Namespace) -> int:
             return _info(args.target)
         if args.command == "run":
             return _run(
-                args.scene, args.output, args.png, args.quiet, args.set, compress=args.compress, float32=args.float32
+                args.scene,
+                args.output,
+                args.png,
+                args.quiet,
+                args.set,
+                compress=args.compress,
+                float32=args.float32,
+                from_result=args.from_result,
             )
         if args.command == "sweep":
             return _sweep(args)

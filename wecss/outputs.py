@@ -487,9 +487,19 @@ VARIABLES: tuple[Variable, ...] = (
         "power_bound",
         "statistics",
         ("pto",),
-        "complex-conjugate bound of mean absorbed power for the wave components (linear, unconstrained)",
+        "complex-conjugate bound of mean absorbed power over the statistics window, on the run's wave record "
+        "(linear, unconstrained, steady state)",
         "W",
         "power_bound",
+    ),
+    Variable(
+        "power_bound_spectral",
+        "statistics",
+        ("pto",),
+        "complex-conjugate bound of mean absorbed power, spectral expectation over the wave components "
+        "(linear, unconstrained)",
+        "W",
+        "power_bound_spectral",
     ),
 )
 """Every variable of a result Dataset, in the order they are added."""

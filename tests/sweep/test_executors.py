@@ -203,3 +203,42 @@ def test_ctrl_c_stops_a_process_pool_at_once_and_keeps_every_finished_case(
     for pid in pids:  # the workers were stopped, not left computing
         with pytest.raises(ProcessLookupError):
             os.kill(pid, 0)
+
+
+def test_ctrl_c_on_dask_keeps_the_finished_cases_and_cancels_the_others() -> None:
+    """Three fast cases and two that would run for a minute, on an in-process Dask cluster (threads): Ctrl-C
+    (a KeyboardInterrupt in this process, raised by ``finish`` once every fast case has returned) hands the fast
+    cases not yet handed to ``finish``, cancels the slow ones and returns at once."""
+    import time
+
+    distributed = pytest.importorskip("dask.distributed")
+    from wecss.sweep._executors import _run_dask
+
+    from .cases import DASK_RELEASE, DASK_RETURNED, dask_work
+
+    DASK_RELEASE.clear()
+    DASK_RETURNED.clear()
+    finished: list[float] = []
+
+    def finish(case, outcome):  # type: ignore[no-untyped-def]
+        finished.append(dict(case.values)["sea.period"])
+        if len(finished) == 1:  # Ctrl-C once every fast case returned (their futures finish just after)
+            deadline = time.monotonic() + 30
+            while len(DASK_RETURNED) < 3 and time.monotonic() < deadline:
+                time.sleep(0.01)
+            time.sleep(0.5)
+            raise KeyboardInterrupt
+
+    sweep = Sweep(BASE, (("sea.period", (1.0, 1.1, 1.2, 1.4, 1.6)),))
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=5, processes=False, dashboard_address=None
+    ) as cluster:
+        start = time.monotonic()
+        try:
+            with pytest.raises(KeyboardInterrupt):
+                _run_dask(list(sweep.cases), finish, cluster.scheduler_address, None, work=dask_work)
+            took = time.monotonic() - start
+        finally:
+            DASK_RELEASE.set()
+    assert sorted(finished) == [1.0, 1.1, 1.2]  # every finished case kept, the slow ones never handed
+    assert took < 20.0  # not waiting for the slow cases (60 s)

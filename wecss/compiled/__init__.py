@@ -9,6 +9,9 @@ from ._compile import initial_increments as initial_increments
 from ._compile import make_radiation as make_radiation
 from ._compile import make_waves as make_waves
 from ._compile import with_linear_gains as with_linear_gains
+from ._inputs import SHIPPED_DATA_DIR as SHIPPED_DATA_DIR
+from ._inputs import device_spec_path as device_spec_path
+from ._inputs import recorded_inputs as recorded_inputs
 from ._inputs import scene_inputs as scene_inputs
 from ._jit import JIT as JIT
 from ._plant import Plant as Plant

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from .. import waves as wv
-from ..devices import Device
+from ..devices import Device, DeviceSpecError, check_against_database
 from ..devices import available as available_devices
 from ..devices import load as load_device
 from ..hydro import HydroData, without_body_interactions
@@ -402,6 +402,10 @@ def _device_parts(
     except FileNotFoundError as err:
         raise SceneError(f"device.hydro: {err}") from None
     coupling = device.coupling(database if body_to_body else without_body_interactions(database))
+    try:
+        check_against_database(device.name, list(device.model.bodies), database)
+    except DeviceSpecError as err:
+        raise SceneError(str(err)) from None
     statics = StaticModel(device.model, coupling.hydro.g, coupling, device.ptos)
     q0 = statics.equilibrium()
     stiffness = statics.stiffness(q0)

@@ -14,6 +14,9 @@ from ._attach import control_context as control_context
 from ._protocol import ControlContext as ControlContext
 from ._protocol import Controller as Controller
 from ._protocol import Measurement as Measurement
+from ._provenance import UNREGISTERED as UNREGISTERED
+from ._provenance import controller_attrs as controller_attrs
+from ._provenance import registered_name as registered_name
 from ._registry import ENTRY_POINT_GROUP as ENTRY_POINT_GROUP
 from ._registry import available as available
 from ._registry import check_controller as check_controller

@@ -28,10 +28,14 @@ class ControlledScene(CompiledScene):
         The controller, set up with ``control_context``.
     control_context : ControlContext
         What the controller was told (PTOs, limits, periods, the sea state, the open plant's linear model).
+    controller_given : bool
+        True when the controller was given (``simulate(scene, controller=obj)``) instead of made from the scene's
+        ``controller`` section, which then did not run (the result says so).
     """
 
     controller: Controller
     control_context: ControlContext
+    controller_given: bool = False
 
 
 def control_context(compiled: CompiledScene) -> ControlContext:
@@ -90,7 +94,12 @@ def attach_controller(compiled: CompiledScene, controller: Controller | None = N
     if isinstance(compiled, ControlledScene):
         raise ValueError("this compiled scene has a controller already; attach to the plant from compile_plant")
     if controller is None:
-        controller = _scene_controller(compiled.scene)
+        return _attach(compiled, _scene_controller(compiled.scene), given=False)
+    return _attach(compiled, controller, given=True)
+
+
+def _attach(compiled: CompiledScene, controller: Controller, *, given: bool) -> ControlledScene:
+    """:func:`attach_controller` of a controller made from the scene (``given`` False) or given by the caller."""
     check_controller(controller)
     context = control_context(compiled)
     name = type(controller).__name__
@@ -119,7 +128,7 @@ def attach_controller(compiled: CompiledScene, controller: Controller | None = N
                 f"periods ({context.control_period:.6g} s)"
             )
     fields = {f.name: getattr(compiled, f.name) for f in dataclasses.fields(CompiledScene)}
-    return ControlledScene(**fields, controller=controller, control_context=context)
+    return ControlledScene(**fields, controller=controller, control_context=context, controller_given=given)
 
 
 def compile_scene(scene: Scene, controller: Controller | None = None) -> ControlledScene:
@@ -138,7 +147,6 @@ def compile_scene(scene: Scene, controller: Controller | None = None) -> Control
     if not isinstance(scene, Scene):
         raise TypeError(f"compile_scene takes a wecss.scene.Scene; got {type(scene).__name__}")
     if controller is None:
-        controller = _scene_controller(scene)
-    else:
-        check_controller(controller)
-    return attach_controller(compile_plant(scene), controller)
+        return _attach(compile_plant(scene), _scene_controller(scene), given=False)
+    check_controller(controller)
+    return _attach(compile_plant(scene), controller, given=True)

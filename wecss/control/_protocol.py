@@ -7,7 +7,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 
@@ -159,6 +159,14 @@ class Controller(ABC):
     needs_state: bool = False
     preview_horizon: float | None = None
     elevation_at: tuple[float, float] | None = None
+    _made_with: tuple[tuple[Any, ...], dict[str, Any]]
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> Self:
+        # the arguments the instance was made with, kept for the result's provenance
+        # (``wecss.control.controller_attrs``): any subclass has them without cooperating
+        self = super().__new__(cls)
+        self._made_with = (args, kwargs)
+        return self
 
     @abstractmethod
     def setup(self, context: ControlContext) -> None:

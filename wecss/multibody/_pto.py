@@ -22,6 +22,11 @@ def _check_gains(name: str, damping: float, stiffness: float) -> None:
     for label, value in (("damping", damping), ("stiffness", stiffness)):
         if not np.isfinite(value):
             raise ValueError(f"PTO {name!r}: {label} must be finite; got {value!r}")
+    if damping < 0:
+        raise ValueError(
+            f"PTO {name!r}: damping must be >= 0 [N m s/rad or N s/m] (a negative damping supplies energy); "
+            f"got {damping!r}"
+        )
 
 
 def _check_limits(pto: JointPTO | ActuatorPTO) -> None:

@@ -63,7 +63,8 @@ class Body:
     Raises
     ------
     ValueError
-        On a non-positive mass, a non-symmetric or indefinite inertia, a malformed vector, or bad modes.
+        On a non-positive mass, a non-symmetric or indefinite inertia, principal moments that break the triangle
+        inequality (one larger than the sum of the other two), a malformed vector, or bad modes.
     """
 
     name: str
@@ -87,8 +88,15 @@ class Body:
             raise ValueError(
                 f"body {self.name!r}: inertia must be a symmetric 3x3 matrix [kg m^2]; got {self.inertia!r}"
             )
-        if np.min(np.linalg.eigvalsh(inertia)) < -1e-12 * max(1.0, float(np.abs(inertia).max())):
+        principal = np.linalg.eigvalsh(inertia)  # ascending
+        if principal[0] < -1e-12 * max(1.0, float(np.abs(inertia).max())):
             raise ValueError(f"body {self.name!r}: inertia must be positive semi-definite; got {inertia.tolist()}")
+        if principal[0] + principal[1] < principal[2] * (1 - TRIANGLE_TOL):
+            raise ValueError(
+                f"body {self.name!r}: the principal moments of inertia {np.round(principal, 6).tolist()} kg m^2 break "
+                f"the triangle inequality ({principal[0]:.6g} + {principal[1]:.6g} < {principal[2]:.6g}): no mass "
+                "distribution has them; accepted: each principal moment at most the sum of the other two"
+            )
         object.__setattr__(self, "mass", float(self.mass))
         object.__setattr__(self, "inertia", inertia)
         object.__setattr__(self, "center_of_mass", _vector(self.center_of_mass, f"body {self.name!r} center_of_mass"))
@@ -98,6 +106,11 @@ class Body:
             if modes.n:
                 modes = GeneralisedModes(modes.names, modes.mass, modes.stiffness, modes.damping, self.name)
         object.__setattr__(self, "modes", modes)
+
+
+TRIANGLE_TOL: float = 1e-9
+"""Relative tolerance of the triangle inequality I_1 + I_2 >= I_3 of a body's principal moments of inertia (equality:
+a flat body)."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -25,12 +25,30 @@ def _has_display() -> bool:
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
+def refuse_all_nan(ds: xr.Dataset, names: tuple[str, ...]) -> None:
+    """Refuse to plot a result whose variable among ``names`` is NaN at every value (a picture of nothing that
+    looks like a result).
+
+    Raises
+    ------
+    ValueError
+        Naming the variable and its number of values.
+    """
+    for name in names:
+        if name in ds and ds[name].size and bool(np.all(np.isnan(ds[name].values))):
+            raise ValueError(
+                f"nothing to plot: {name} is NaN at all of its {ds[name].size} values; accepted: a result with "
+                "numbers in it (a run that diverged, or a result edited by hand?)"
+            )
+
+
 def plot_timeseries(ds: xr.Dataset, path: str | Path | None = None) -> Any:
     """Wave elevation, PTO strokes and PTO power against time; saved to ``path`` when given. Returns the figure."""
     plt = _pyplot()
     panels = [v for v in ("wave_elevation", "pto_angle", "pto_displacement", "pto_power") if v in ds]
     if not panels:
         raise ValueError("nothing to plot: the dataset has no wave_elevation, PTO or power time series")
+    refuse_all_nan(ds, tuple(panels))
     fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(9, 2.2 * len(panels) + 0.6), squeeze=False)
     for ax, name in zip(axes[:, 0], panels, strict=True):
         da = ds[name]

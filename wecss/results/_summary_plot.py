@@ -14,7 +14,7 @@ import xarray as xr
 
 from ..waves import Jonswap
 from ._metrics import mean_power
-from ._plot import _pyplot
+from ._plot import _pyplot, refuse_all_nan
 
 LINESTYLES = ("-", "--", "-.", ":")
 """Line styles cycled with the colours, so PTOs stay apart in print and for colour-blind readers."""
@@ -86,11 +86,13 @@ def plot_summary(ds: xr.Dataset, path: str | Path | None = None) -> Any:
     Raises
     ------
     ValueError
-        If the result has no time series of wave elevation, PTO strokes or power.
+        If the result has no time series of wave elevation, PTO strokes or power, or one of them (or the mean
+        power) is NaN everywhere.
     """
     plt = _pyplot()
     if "time" not in ds.dims or not any(v in ds for v in ("wave_elevation", "pto_power")):
         raise ValueError("nothing to plot: the result has no wave_elevation or PTO time series (statistics_only run?)")
+    refuse_all_nan(ds, ("wave_elevation", "pto_angle", "pto_displacement", "pto_power", "mean_pto_power"))
     from matplotlib.gridspec import GridSpec
 
     fig = plt.figure(figsize=(10, 9.5))

@@ -81,7 +81,7 @@ class Capabilities:
             )
 
 
-OPTIONAL_SOLVER_FIELDS = ("hold",)
+OPTIONAL_SOLVER_FIELDS = ("hold", "allow_large")
 """``solver`` fields that only some runners read (default None); a scene that sets one for a runner that does not
 declare it in :attr:`Capabilities.options` is refused."""
 

@@ -236,14 +236,24 @@ class ControllerChoice:
         Control period [s] or relative ("Tp/20"): the controller is called every ``dt`` and its force held in
         between. A whole number of solver steps; None (default) calls it every step. Controllers with linear
         gains act continuously and ignore it.
+    time_limit : float
+        Wall time [s] one call of the controller's ``compute`` may take (default 60: some 300 times the median
+        cvxpy MPC solve of ``docs/control.md``, 194 ms, yet a hung controller stops within a minute); a call
+        past it stops the run with ``wecss.sim.ControllerTimeout``. ``inf``: no limit. Enforced in the main
+        thread only (``wecss/sim/_watchdog.py``; elsewhere the result's notes say it was not).
     """
 
     name: str = "damping"
     parameters: dict[str, Any] = field(default_factory=dict)
     dt: float | str | None = None
+    time_limit: float = 60.0
 
     def __post_init__(self) -> None:
         check_types("controller", {"name": (self.name, str), "parameters": (self.parameters, dict)})
+        if not self.time_limit > 0:
+            raise SceneError(
+                f"controller.time_limit must be a positive time [s] (inf: no limit); got {self.time_limit!r}"
+            )
         object.__setattr__(self, "parameters", Parameters(self.parameters))
 
 
@@ -285,6 +295,9 @@ class Solver:
         the corrector until the accelerations change by less than ``corrector_tol`` (the paper: 0.01), with no
         implicit fallback. Slower, and it converges only where the added mass is smaller than the rigid mass in
         every mode (a run refuses to start otherwise; see ``wecss.sim`` docs, "the paper's method").
+    allow_large : bool or None
+        "reference" only: run it even when it needs more than ``wecss.limits.REFERENCE_EVALUATIONS`` evaluations
+        (a stiff plant: an explicit method's step is bounded by the fastest mode); default None: refused.
     """
 
     method: str = "beeman"
@@ -296,9 +309,12 @@ class Solver:
     reference_rtol: float = 1e-10
     hold: str | None = None
     added_mass: str | None = None
+    allow_large: bool | None = None
 
     def __post_init__(self) -> None:
         check_types("solver", {"method": (self.method, str)})
+        if self.allow_large is not None and not isinstance(self.allow_large, bool):
+            raise SceneError(f"solver.allow_large must be true or false; got {self.allow_large!r}")
         if self.added_mass is not None:
             check_choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
         if self.added_mass == "explicit" or self.method == EXPLICIT_RUNNER:
@@ -395,7 +411,8 @@ class Outputs:
     Attributes
     ----------
     variables : sequence of {"motion", "pto", "excitation", "radiation", "elevation", "poses", "loads"}
-        Groups of time series; empty with ``statistics_only``. ``loads`` (not in the default) adds the joint
+        Groups of time series; empty or left out with ``statistics_only`` (other groups with it are refused).
+        ``loads`` (not in the default) adds the joint
         reactions and the PTO loads on both ends, recovered from the record after the run.
     every : int
         Keep every k-th step.
@@ -419,6 +436,12 @@ class Outputs:
             check_choice("outputs.variables", v, OUTPUT_GROUPS)
         if not self.variables and not self.statistics_only:
             raise SceneError("outputs.variables is empty: ask for at least one group or set statistics_only = true")
+        if self.statistics_only and self.variables and self.variables != DEFAULT_OUTPUTS:
+            raise SceneError(
+                f"outputs.statistics_only = true keeps no time series, yet outputs.variables = {list(self.variables)} "
+                "asks for some; accepted: statistics_only = false with the groups, or statistics_only = true with "
+                "variables = [] (or left out)"
+            )
         if not (isinstance(self.every, int) and self.every >= 1):
             raise SceneError(f"outputs.every must be an integer >= 1; got {self.every!r}")
         if not 0 < self.window <= 1:

@@ -22,10 +22,14 @@ from ..scene import SeaState as SeaState
 from ..scene import Solver as Solver
 from ..scene import default_scene_path as default_scene_path
 from ._dataset import build_result as build_result
+from ._errors import ControllerTimeout as ControllerTimeout
 from ._errors import PtoLimitExceeded as PtoLimitExceeded
 from ._errors import SimulationDiverged as SimulationDiverged
 from ._linear import simulate_linear as simulate_linear
 from ._progress import format_seconds as format_seconds
 from ._record import Record as Record
 from ._record import window_statistics as window_statistics
+from ._reproduce import fit_difference as fit_difference
+from ._reproduce import gains_difference as gains_difference
+from ._reproduce import scene_from_result as scene_from_result
 from ._simulate import simulate as simulate

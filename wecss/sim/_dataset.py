@@ -157,7 +157,9 @@ def _finish(qs: Quantities, data: dict[str, Any], coords: dict[str, Any], motion
         motion,
         later_notes=qs.notes,
         mean_power=None if "mean_pto_power" not in data else data["mean_pto_power"][1],
-        bound=qs._values.get("bound"),
+        bound=None
+        if "power_bound_spectral" not in data
+        else (data["power_bound"][1] if "power_bound" in data else None, data["power_bound_spectral"][1]),
         closure=None if loads is None else loads.closure,
     )
     return apply_attrs(xr.Dataset(data, coords=coords, attrs=attrs))

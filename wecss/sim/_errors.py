@@ -26,3 +26,8 @@ class SimulationDiverged(RuntimeError):
 
 class PtoLimitExceeded(SimulationDiverged):
     """A PTO stroke passed its ``stroke_limit`` on a PTO without an end stop (the device spec says to stop)."""
+
+
+class ControllerTimeout(RuntimeError):
+    """A controller's ``compute`` ran past the scene's ``controller.time_limit`` (the message names the controller,
+    the simulation time of the call and the limit)."""

@@ -122,6 +122,8 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
     """Notes on the sea's steepness H / lambda (H or Hs [m] and the wavelength at the period or peak period, at
     the database's depth) and its height against the smallest body."""
     waves, sea = compiled.waves, compiled.scene.sea
+    if sea.kind == "calm":
+        return calm_notes(compiled)
     if waves is None or not waves.omega.size:
         return []
     # the height the user gave (H of a regular wave, Hs of a spectrum), else that of the simulated components
@@ -145,6 +147,23 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
                 f"{name}; linear hydrodynamics lose accuracy"
             )
     return notes
+
+
+def calm_notes(compiled: CompiledScene) -> list[str]:
+    """A note when a calm sea's times are given relative to a period it does not have (``sea.duration = "20 Tp"``:
+    resolved with ``sea.period``, the default 1.2 s unless given)."""
+    scene = compiled.scene
+    relative = [
+        f"{name} = {value!r}"
+        for name, value in (("sea.duration", scene.sea.duration), ("sea.ramp", scene.sea.ramp))
+        if isinstance(value, str)
+    ]
+    if not relative:
+        return []
+    return [
+        f"calm sea: {', '.join(relative)} resolved with sea.period = {scene.sea.period!r} s though a calm sea has no "
+        "period; give seconds"
+    ]
 
 
 def pressure_notes(compiled: CompiledScene, flags: np.ndarray | None) -> list[str]:

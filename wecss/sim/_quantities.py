@@ -21,6 +21,7 @@ from ..control import ControlledScene
 from ..control.design import PowerBound, power_bound
 from ..multibody import difference
 from ..waves import Ramp
+from ._bound_window import window_bound
 from ._layout import natural_hydro_order
 from ._load_amplitudes import load_amplitudes
 from ._loads import Loads, recover_loads
@@ -252,6 +253,18 @@ def _bound(qs: Quantities) -> PowerBound | None:
 
 
 def _power_bound(qs: Quantities) -> np.ndarray | None:
+    """The bound per PTO of the excitation over the run's statistics window (``window_bound``)."""
+    if qs.get("bound") is None:
+        return None
+    try:
+        return window_bound(qs.controlled).per_pto
+    except ValueError as err:
+        qs.notes.append(f"no complex-conjugate power bound over the statistics window: {err}")
+        return None
+
+
+def _power_bound_spectral(qs: Quantities) -> np.ndarray | None:
+    """The bound's spectral expectation per PTO (the sum over components)."""
     bound = qs.get("bound")
     return None if bound is None else bound.per_pto
 
@@ -281,6 +294,7 @@ QUANTITIES: dict[str, Callable[[Quantities], Any]] = {
     "stroke_limit_episodes": _limit(3, False),
     "bound": _bound,
     "power_bound": _power_bound,
+    "power_bound_spectral": _power_bound_spectral,
     "terms": _terms,
     **{
         f"{name}_{part}": _term(rows, part == "moment")

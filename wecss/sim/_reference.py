@@ -9,10 +9,13 @@ from typing import Any
 
 import numpy as np
 
+from ..compiled import CompiledScene
 from ..compiled.kernels import workspace
 from ..control import ControlledScene
-from ..scene import Capabilities, Runner
+from ..limits import REFERENCE_EVALUATIONS, beyond
+from ..scene import Capabilities, Runner, SceneError
 from ._errors import SimulationDiverged
+from ._guards import fastest_mode
 from ._record import Record, continuous_power, window_statistics
 from ._rk4 import state_rates
 
@@ -29,6 +32,7 @@ class ReferenceSolver(Runner):
         hydrodynamics=("body-exact", "drag"),
         terms=True,
         order=8,
+        options=("allow_large",),
     )
     radiation_reason = (
         "with a convolution the memory at the intermediate stages is not defined, which would drop the scheme to first "
@@ -54,11 +58,20 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
         exc = compiled.excitation_at(np.array([t]))[0]
         return (*state_rates(p, r, q, v, z, exc, t, command, work), exc, work.terms.out.reshape(-1).copy())
 
+    budget = np.inf if scene.solver.allow_large else REFERENCE_EVALUATIONS
+    evaluations = 0
+
     def rates(t: float, y: np.ndarray) -> np.ndarray:
+        nonlocal evaluations
+        evaluations += 1
+        if evaluations > budget:  # the estimate below missed: a stiffness the equilibrium does not show
+            raise SceneError(_refusal(f"{evaluations - 1} evaluations by t = {t:.6g} s of {time[-1]:.4g} s", budget))
         qd, a, zd, *_ = parts(t, y)
         return np.concatenate([qd, a, zd.real, zd.imag])
 
     every = scene.outputs.every if not scene.outputs.statistics_only else compiled.n_steps + 1
+    if not scene.solver.allow_large:
+        check_stiffness(compiled)
     time = compiled.time  # every step, to the end, for the statistics; the saved ones are every ``every``-th
     q0, v0 = compiled.initial_state()
     y0 = np.concatenate([q0, v0, np.zeros(2 * nz)])
@@ -90,6 +103,50 @@ def run_reference(compiled: ControlledScene, progress: bool) -> Record:
         run_time=run_time,
         solver=solver,
         pressure_flags=work.terms.flags.copy(),
+    )
+
+
+EVALUATIONS_PER_STIFFNESS: float = 3.5
+"""Right-hand-side evaluations DOP853 spends per unit of |s| T (the fastest rate |s| [1/s] times the run's
+duration T [s]) where stability, not accuracy, sets its step: measured 30,512 evaluations for |s| T = 8,648 (m4-111,
+PTO damping 1e4 N m s/rad, 2 s): 12 stages per step of |s| h about 3.4."""
+
+
+def stiffness(compiled: CompiledScene) -> tuple[float, float]:
+    """The fastest rate |s| [1/s] of the plant (its mechanical modes with the PTO gains, and the state-space
+    radiation poles) and the evaluations DOP853 needs for it over the run, EVALUATIONS_PER_STIFFNESS |s| T."""
+    rate = max(fastest_mode(compiled), float(compiled.radiation_summary.max_pole))
+    return rate, EVALUATIONS_PER_STIFFNESS * rate * float(compiled.time[-1])
+
+
+def check_stiffness(compiled: CompiledScene) -> None:
+    """Refuse, before it starts, a reference run whose plant is too stiff for an explicit method over its
+    duration (more than REFERENCE_EVALUATIONS evaluations estimated).
+
+    Raises
+    ------
+    SceneError
+        Naming the fastest rate, the estimate, the limit and ``solver.allow_large``.
+    """
+    rate, needed = stiffness(compiled)
+    if needed > REFERENCE_EVALUATIONS:
+        raise SceneError(
+            _refusal(
+                f"about {needed:.3g} evaluations estimated (fastest mode |s| = {rate:.4g} rad/s over "
+                f"{float(compiled.time[-1]):.4g} s: a stiff plant, an explicit method's step is about 3.4 / |s|)",
+                REFERENCE_EVALUATIONS,
+            )
+        )
+
+
+def _refusal(value: str, limit: float) -> str:
+    return beyond(
+        "the reference solver (DOP853)",
+        value,
+        f"{limit:.3g} evaluations",
+        "a stiff PTO gain or a fast radiation pole: reduce the gain, or use solver.method 'linear', exact in the "
+        "linear terms",
+        "give solver.allow_large = true",
     )
 
 

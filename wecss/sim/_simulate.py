@@ -13,6 +13,7 @@ from ..control import ControlledScene, Controller, attach_controller, compile_sc
 from ..files import refuse_overwrite
 from ..interrupts import interrupts_surfaced
 from ..netcdf import partial_path, storage_encoding, write_netcdf
+from ..provenance import with_relative_paths
 from ..scene import Scene
 from ._dataset import build_result
 from ._stream import ResultStream, streamable
@@ -103,6 +104,7 @@ def simulate(
         record = runner.run(controlled, progress=progress)
     ds = build_result(controlled, record)
     if path is not None:
+        ds.attrs = with_relative_paths(ds.attrs, path)  # the input files' paths from the result's folder
         write_netcdf(ds, path, compress=compress, float32=float32)
     return ds
 

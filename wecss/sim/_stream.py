@@ -23,6 +23,7 @@ from ..control import ControlledScene
 from ..interrupts import Terminated
 from ..netcdf import AppendingWriter
 from ..outputs import STREAMED_GROUPS
+from ..provenance import with_relative_paths
 from ._dataset import series_variables, statistics_dataset
 from ._guards import MotionSummary
 from ._quantities import elevation_series
@@ -92,7 +93,9 @@ class ResultStream:
         """The statistics and attributes of the finished run (``record``: its sums and solver); returns the file."""
         if self.writer.rows != self.n_save:
             raise RuntimeError(f"{self.writer.rows} of {self.n_save} saved steps reached the file")
-        return self.writer.finish(statistics_dataset(self.compiled, record, self.motion.notes()))
+        rest = statistics_dataset(self.compiled, record, self.motion.notes())
+        rest.attrs = with_relative_paths(rest.attrs, self.writer.target)  # input files from the result's folder
+        return self.writer.finish(rest)
 
     def stop(self, err: BaseException) -> Path | None:
         """The run stopped with ``err``: the partial file says so (returned; None when nothing was written)."""

@@ -155,7 +155,20 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
                 process.join()
 
 
-def _run_dask(todo: list[Case], finish: Finish, scheduler: str | None, workers: int | None) -> None:
+def _run_dask(
+    todo: list[Case],
+    finish: Finish,
+    scheduler: str | None,
+    workers: int | None,
+    work: Callable[[str], CaseOutcome] = run_case,
+) -> None:
+    """The cases on Dask: a new LocalCluster of ``workers`` processes, or the cluster at ``scheduler``
+    (``work``: what a worker runs on a case's scene JSON).
+
+    On Ctrl-C (or any error in this process) the cases that had finished are handed to ``finish``, every other
+    future is cancelled (a case running on a worker of an existing cluster runs to its end there, its result
+    dropped; a LocalCluster of this call is closed, its worker processes with it) and the exception is raised.
+    """
     try:
         from dask.distributed import Client, LocalCluster
         from dask.distributed import as_completed as dask_completed
@@ -174,10 +187,16 @@ def _run_dask(todo: list[Case], finish: Finish, scheduler: str | None, workers: 
                 )
             )
             client = stack.enter_context(Client(cluster))
-        futures = {client.submit(run_case, case.scene.to_json(), pure=False): case for case in todo}
+        futures = {client.submit(work, case.scene.to_json(), pure=False): case for case in todo}
+        handed: set[object] = set()
         try:
             for future in dask_completed(list(futures)):
+                handed.add(future)
                 finish(futures[future], future.result())
         except BaseException:
-            client.cancel(list(futures))
+            client.cancel([f for f in futures if f.status != "finished"])
+            for future, case in futures.items():  # finished before the interrupt: kept
+                if future not in handed and future.status == "finished":
+                    handed.add(future)
+                    finish(case, future.result())
             raise

@@ -24,6 +24,7 @@ import xarray as xr
 from ..compiled import scene_inputs
 from ..files import refuse_overwrite
 from ..netcdf import write_netcdf
+from ..provenance import with_relative_paths
 from ._case import CaseOutcome
 from ._combine import combine
 from ._executors import Executor, check_executor, execute
@@ -216,6 +217,7 @@ def run_sweep(
         compile_s.append(outcome.compile_s)
         run_s.append(outcome.run_s)
         if outcome.result is not None:
+            outcome.result.attrs = with_relative_paths(outcome.result.attrs, result)  # inputs from the case file
             write_netcdf(outcome.result, result, compress=compress, float32=float32)
             failure.unlink(missing_ok=True)
             log.write(f"done {case.name} (compile {outcome.compile_s:.3g} s, run {outcome.run_s:.3g} s)")

@@ -21,13 +21,16 @@ bad path or value fails with the scene's own message before any run.
 from __future__ import annotations
 
 import itertools
+import math
 import re
+import sys
 import tomllib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..limits import SWEEP_ANNOUNCE_CASES, SWEEP_CASES, beyond
 from ..scene import Scene, SceneError, default_scene_path
 from ..tomlfile import read_toml
 
@@ -125,12 +128,17 @@ class Sweep:
         "grid": every combination (the axes become the combined dataset's dimensions); "list": the i-th value of
         every axis makes case i (all axes of one length; dimension ``case``).
     name : str
+    allow_large : bool
+        Expand more than ``wecss.limits.SWEEP_CASES`` (10,000) cases all the same (default False: refused before
+        any case is made). A sweep of more than ``SWEEP_ANNOUNCE_CASES`` (1000) cases says its size on standard
+        error before its cases are validated.
     """
 
     base: dict[str, Any]
     axes: tuple[tuple[str, tuple[Any, ...]], ...]
     mode: str = "grid"
     name: str = "sweep"
+    allow_large: bool = False
 
     def __post_init__(self) -> None:
         if self.mode not in SWEEP_MODES:
@@ -150,7 +158,27 @@ class Sweep:
             lengths = {p: len(v) for p, v in self.axes}
             if len(set(lengths.values())) != 1:
                 raise SceneError(f"sweep.mode 'list' needs axes of one length; got {lengths}")
+        self._check_size()
         self.cases  # noqa: B018 (every case validated on construction)
+
+    def _check_size(self) -> None:
+        """Refuse more than SWEEP_CASES cases without ``allow_large``; say the size of a large sweep at once."""
+        if not isinstance(self.allow_large, bool):
+            raise SceneError(f"sweep.allow_large must be true or false; got {self.allow_large!r}")
+        n = math.prod(self.shape)
+        grid = " x ".join(str(k) for k in self.shape) if self.mode == "grid" else f"a list of {n}"
+        if n > SWEEP_CASES and not self.allow_large:
+            raise SceneError(
+                beyond(
+                    f"sweep {self.name!r}: cases",
+                    f"{n} ({grid})",
+                    SWEEP_CASES,
+                    "each case's scene is checked before the first runs and each case is a file",
+                    "give allow_large = true in the [sweep] table (Sweep(..., allow_large=True))",
+                )
+            )
+        if n > SWEEP_ANNOUNCE_CASES:
+            print(f"sweep {self.name!r}: {n} cases ({grid}); checking every case's scene", file=sys.stderr, flush=True)
 
     @property
     def cases(self) -> tuple[Case, ...]:
@@ -195,9 +223,9 @@ class Sweep:
         table = data.get("sweep")
         if not isinstance(table, dict):
             raise SceneError("the sweep file needs a [sweep] table with its axes")
-        extra = sorted(set(table) - {"name", "mode", "axes"})
+        extra = sorted(set(table) - {"name", "mode", "axes", "allow_large"})
         if extra:
-            raise SceneError(f"[sweep]: unknown keys {extra}; accepted: name, mode, axes")
+            raise SceneError(f"[sweep]: unknown keys {extra}; accepted: name, mode, axes, allow_large")
         axes_table = table.get("axes", {})
         if not isinstance(axes_table, dict):
             raise SceneError(f"sweep.axes must be a table of path = [values]; got {axes_table!r}")
@@ -219,6 +247,7 @@ class Sweep:
             axes=tuple(axes),
             mode=table.get("mode", "grid"),
             name=str(table.get("name", "sweep")),
+            allow_large=table.get("allow_large", False),
         )
 
     @classmethod
@@ -241,11 +270,18 @@ class Sweep:
 
     @classmethod
     def of(
-        cls, scene: Scene | None, axes: dict[str, Sequence[Any]], *, mode: str = "grid", name: str = "sweep"
+        cls,
+        scene: Scene | None,
+        axes: dict[str, Sequence[Any]],
+        *,
+        mode: str = "grid",
+        name: str = "sweep",
+        allow_large: bool = False,
     ) -> Sweep:
         """From a scene (default: the embedded default) and ``{path: values}``."""
         scene = scene if scene is not None else Scene.from_toml(default_scene_path())
-        return cls(_plain(scene.to_dict()), tuple((p, tuple(v)) for p, v in axes.items()), mode=mode, name=name)
+        axes_ = tuple((p, tuple(v)) for p, v in axes.items())
+        return cls(_plain(scene.to_dict()), axes_, mode=mode, name=name, allow_large=allow_large)
 
 
 def _flatten(table: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
