@@ -132,7 +132,7 @@ def table(rows: list[dict], pto_names: list[str]) -> str:
     head = (
         "| Tp [s] | controller | model | "
         + " | ".join(f"{n} [mW]" for n in pto_names)
-        + " | total [mW] | CWR | RMS angle [deg] | share of bound | share of constrained optimum"
+        + " | total [mW] | CWR | RMS angle [deg] | share of spectral bound | share of constrained optimum"
         + " | past stroke limit, sum of PTOs [s] | run [s] |"
     )
     lines = [head, "|" + "---|" * (10 + len(pto_names))]

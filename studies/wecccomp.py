@@ -151,7 +151,7 @@ def main() -> None:
     states = [1] if args.quick else sorted(sea_states())
     duration = 40.0 if args.quick else None
     print("| sea state | controller | EC [W] | mean P_elec [W] | mean P_abs [W] | abs f 98 [N] | abs z 98 [m] | "
-          "share of bound | share of constrained optimum | MPC fallbacks | run [s] |")  # fmt: skip
+          "share of spectral bound | share of constrained optimum | MPC fallbacks | run [s] |")  # fmt: skip
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     scores: dict[tuple[int, str], dict[str, float]] = {}
     bounds: dict[int, float] = {}

@@ -41,10 +41,13 @@ def window_components(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarr
     exc = controlled.excitation
     if exc is None:
         raise ValueError("calm water has no power bound")
-    time = np.arange(stats_start(controlled), controlled.n_steps + 1) * controlled.dt
+    start = stats_start(controlled)
+    time = np.arange(start, controlled.n_steps + 1) * controlled.dt
     n = time.size
     omega = 2 * np.pi * np.arange(n // 2 + 1) / (n * controlled.dt)
-    amplitude = 2 * np.fft.rfft(exc.force(time), axis=1) / n * np.exp(-1j * omega * time[0])[None, :]
+    sampled = exc.sampled(controlled.dt)  # by blocks, at a cost that does not grow with the components
+    force = exc.force(time) if sampled is None else sampled(start, n).T
+    amplitude = 2 * np.fft.rfft(force, axis=1) / n * np.exp(-1j * omega * time[0])[None, :]
     # the band's ends widened by a small share of the window's frequency step: a window of whole periods of a
     # regular wave has its frequency on the window's grid only to rounding
     edge = BAND_EDGE * 2 * np.pi / (n * controlled.dt)
