@@ -1,7 +1,10 @@
 """Run every study with ``--quick`` (what ``make studies-quick`` and CI do): each ``studies/[a-z]*.py`` (the
 ``_``-prefixed modules are helpers), in name order, each in its own process, stopping at the first that fails.
+With ``--jobs N`` up to N run at once: each one's output is printed whole when it ends, in name order, and after a
+failure no further study starts (those already running end first).
 
-    python studies/_quick.py                    # every study
+    python studies/_quick.py                    # every study, one at a time
+    python studies/_quick.py --jobs 2           # two at a time (what CI does on its two cores)
     python studies/_quick.py m4_paper notc      # some of them
 """
 
@@ -11,6 +14,8 @@ import argparse
 import subprocess
 import sys
 import time
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 
 STUDIES = Path(__file__).resolve().parent
@@ -21,27 +26,59 @@ def studies() -> list[Path]:
     return sorted(STUDIES.glob("[a-z]*.py"))
 
 
+def run_one(path: Path, capture: bool) -> tuple[int, float, str]:
+    """Run one study with ``--quick``: its exit status, its wall time [s] and, with ``capture``, its output (stdout
+    then stderr; else it goes straight to this process's)."""
+    start = time.perf_counter()
+    done = subprocess.run([sys.executable, str(path), "--quick"], capture_output=capture, text=True)
+    return done.returncode, time.perf_counter() - start, (done.stdout + done.stderr) if capture else ""
+
+
 def main(argv: list[str] | None = None) -> int:
     known = {path.stem: path for path in studies()}
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("names", nargs="*", help=f"studies to run (default: all): {', '.join(known)}")
+    parser.add_argument("--jobs", type=int, default=1, help="studies run at once (default 1)")
     args = parser.parse_args(argv)
     unknown = sorted(set(args.names) - set(known))
     if unknown:
         parser.error(f"unknown studies: {', '.join(unknown)}; known: {', '.join(known)}")
+    if args.jobs < 1:
+        parser.error(f"--jobs must be a whole number of at least 1; got {args.jobs}")
     chosen = [known[name] for name in args.names] if args.names else list(known.values())
     times = []
-    for path in chosen:
-        script = path.relative_to(STUDIES.parent)
-        print(f"== {script} --quick", flush=True)
-        start = time.perf_counter()
-        status = subprocess.run([sys.executable, str(path), "--quick"]).returncode
-        times.append((script, time.perf_counter() - start))
-        if status != 0:
-            print(f"studies-quick: {script} --quick failed (exit status {status})", file=sys.stderr, flush=True)
-            return 1
+    capture = args.jobs > 1
+    begin = time.perf_counter()
+    with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        window: deque[tuple[Path, Future[tuple[int, float, str]]]] = deque()
+
+        def start(path: Path) -> None:
+            if not capture:  # its output follows at once
+                print(f"== {path.relative_to(STUDIES.parent)} --quick", flush=True)
+            window.append((path, pool.submit(run_one, path, capture)))
+
+        queue = iter(chosen)
+        for path in queue:
+            start(path)
+            if len(window) == args.jobs:
+                break
+        while window:
+            path, future = window.popleft()
+            script = path.relative_to(STUDIES.parent)
+            status, seconds, output = future.result()
+            if capture:
+                print(f"== {script} --quick\n{output}", end="" if output.endswith("\n") else "\n", flush=True)
+            times.append((script, seconds))
+            if status != 0:
+                print(f"studies-quick: {script} --quick failed (exit status {status})", file=sys.stderr, flush=True)
+                return 1
+            following = next(queue, None)
+            if following is not None:
+                start(following)
     print("\n".join(["== studies --quick: wall time", *(f"{t:7.1f} s  {s}" for s, t in times)]), flush=True)
     print(f"{sum(t for _, t in times):7.1f} s  in all ({len(times)} studies)", flush=True)
+    if capture:
+        print(f"{time.perf_counter() - begin:7.1f} s  of wall time, {args.jobs} at once", flush=True)
     return 0
 
 

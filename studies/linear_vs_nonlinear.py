@@ -86,7 +86,7 @@ class SteepCase:
 STEEP_CASES = (
     SteepCase("m4-134", 1.2, 3.3, (0.005, 0.01, 0.02, 0.04, 0.08, 0.12, 0.16, 0.20, 0.24), {"name": "damping"}),
     SteepCase(
-        "wavestar", 1.412, 3.3, (0.005, 0.01, 0.02, 0.04, 0.0625, 0.08, 0.1042, 0.125, 0.15),
+        "wavestar", 1.412, 3.3, (0.005, 0.01, 0.02, 0.04, 0.0625, 0.08, 0.1042, 0.125, 0.15, 0.2, 0.25, 0.3),
         {"name": "optimal-damping"},
     ),
 )  # fmt: skip
@@ -438,6 +438,7 @@ def _figures(ds: xr.Dataset, kinematic: dict, steep: dict) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     heights = list(KINEMATIC_HEIGHTS)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -466,6 +467,7 @@ def _figures(ds: xr.Dataset, kinematic: dict, steep: dict) -> None:
         row[0].set(xlabel="Hs [m]", ylabel="mean power / linear model's", title=f"{c}: power")
         row[1].set(xlabel="Hs [m]", ylabel="RMS stroke / linear model's", title=f"{c}: stroke")
         for ax in row:
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
             ax.axhline(1.0, color="k", lw=0.5)
             ax.grid(alpha=0.3)
             ax.legend()

@@ -135,3 +135,36 @@ def test_the_runner_runs_every_study_and_stops_at_the_first_failure_naming_it(
     assert runner.main([]) == 0
     assert sorted(p.name for p in ran.iterdir()) == ["a_first", "b_fails", "c_after"]
     assert "(3 studies)" in capsys.readouterr().out
+
+
+def test_the_runner_with_two_jobs_prints_each_study_whole_in_name_order_and_starts_none_after_a_failure(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    runner = _load(ROOT / "studies" / "_quick.py")
+    ran = tmp_path / "ran"
+    ran.mkdir()
+    body = "import sys, time\nfrom pathlib import Path\nassert sys.argv[1:] == ['--quick']\n"
+    body += f"Path({str(ran)!r}, Path(__file__).stem).touch()\n"
+    # the first study ends last: its output must still come first, and whole
+    (tmp_path / "a_slow.py").write_text(body + "time.sleep(1.0)\nprint('a line one')\nprint('a line two')\n")
+    (tmp_path / "b_quick.py").write_text(body + "print('b says')\n")
+    (tmp_path / "c_fails.py").write_text(body + "print('c says', file=sys.stderr)\nsys.exit(4)\n")
+    (tmp_path / "d_next.py").write_text(body)
+    (tmp_path / "e_never.py").write_text(body)
+    monkeypatch.setattr(runner, "STUDIES", tmp_path)
+    assert runner.main(["--jobs", "2"]) == 1
+    captured = capsys.readouterr()
+    out = captured.out
+    assert out.index("a_slow.py --quick\na line one\na line two\n") < out.index("b_quick.py --quick\nb says\n")
+    assert out.index("b says") < out.index("c_fails.py --quick\nc says")
+    assert "c_fails.py --quick failed (exit status 4)" in captured.err
+    # a and b take the two places, c starts when a is done, d when b is: c's failure starts nothing more, and d
+    # (already running) ends unprinted
+    assert sorted(p.name for p in ran.iterdir()) == ["a_slow", "b_quick", "c_fails", "d_next"]
+    assert "d_next.py --quick" not in out
+    (tmp_path / "c_fails.py").write_text(body)
+    assert runner.main(["--jobs", "2"]) == 0
+    assert sorted(p.name for p in ran.iterdir()) == ["a_slow", "b_quick", "c_fails", "d_next", "e_never"]
+    assert "of wall time, 2 at once" in capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        runner.main(["--jobs", "0"])
