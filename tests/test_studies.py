@@ -114,19 +114,26 @@ def test_generate_hydro_quick_alone_makes_every_database_coarse(
         study.main(["--output-dir", str(tmp_path)])
 
 
-def test_the_runner_runs_every_study_and_stops_at_the_first_failure_naming_it(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
-) -> None:
+def _fake_studies(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[ModuleType, Path, str]:
+    """The study runner pointed at ``tmp_path``, the folder where each fake study leaves a file named after it when
+    it runs, and the body of such a study (it checks its arguments are a bare ``--quick``)."""
     runner = _load(ROOT / "studies" / "_quick.py")
+    monkeypatch.setattr(runner, "STUDIES", tmp_path)
     ran = tmp_path / "ran"
     ran.mkdir()
     body = "import sys\nfrom pathlib import Path\nassert sys.argv[1:] == ['--quick']\n"
     body += f"Path({str(ran)!r}, Path(__file__).stem).touch()\n"
+    return runner, ran, body
+
+
+def test_the_runner_runs_every_study_and_stops_at_the_first_failure_naming_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    runner, ran, body = _fake_studies(tmp_path, monkeypatch)
     (tmp_path / "a_first.py").write_text(body)
     (tmp_path / "b_fails.py").write_text(body + "sys.exit(3)\n")
     (tmp_path / "c_after.py").write_text(body)
     (tmp_path / "_helper.py").write_text(body)
-    monkeypatch.setattr(runner, "STUDIES", tmp_path)
     assert [p.name for p in runner.studies()] == ["a_first.py", "b_fails.py", "c_after.py"]
     assert runner.main([]) == 1
     assert sorted(p.name for p in ran.iterdir()) == ["a_first", "b_fails"]
@@ -140,18 +147,15 @@ def test_the_runner_runs_every_study_and_stops_at_the_first_failure_naming_it(
 def test_the_runner_with_two_jobs_prints_each_study_whole_in_name_order_and_starts_none_after_a_failure(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    runner = _load(ROOT / "studies" / "_quick.py")
-    ran = tmp_path / "ran"
-    ran.mkdir()
-    body = "import sys, time\nfrom pathlib import Path\nassert sys.argv[1:] == ['--quick']\n"
-    body += f"Path({str(ran)!r}, Path(__file__).stem).touch()\n"
+    runner, ran, body = _fake_studies(tmp_path, monkeypatch)
     # the first study ends last: its output must still come first, and whole
-    (tmp_path / "a_slow.py").write_text(body + "time.sleep(1.0)\nprint('a line one')\nprint('a line two')\n")
+    (tmp_path / "a_slow.py").write_text(
+        body + "import time\ntime.sleep(1.0)\nprint('a line one')\nprint('a line two')\n"
+    )
     (tmp_path / "b_quick.py").write_text(body + "print('b says')\n")
     (tmp_path / "c_fails.py").write_text(body + "print('c says', file=sys.stderr)\nsys.exit(4)\n")
     (tmp_path / "d_next.py").write_text(body)
     (tmp_path / "e_never.py").write_text(body)
-    monkeypatch.setattr(runner, "STUDIES", tmp_path)
     assert runner.main(["--jobs", "2"]) == 1
     captured = capsys.readouterr()
     out = captured.out
