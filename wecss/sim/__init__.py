@@ -29,3 +29,5 @@ from ._progress import format_seconds as format_seconds
 from ._record import Record as Record
 from ._record import window_statistics as window_statistics
 from ._simulate import simulate as simulate
+from ._tolerance import StepChoice as StepChoice
+from ._tolerance import choose_step as choose_step
