@@ -10,7 +10,7 @@ import pytest
 
 from wecss.control import compile_scene
 from wecss.scene import SceneError
-from wecss.sim import Scene, choose_step, simulate
+from wecss.sim import Scene, choose_step, default_scene_path, simulate
 
 TOLERANCE = 1e-3
 
@@ -89,7 +89,8 @@ def test_a_calm_sea_has_no_statistics_to_judge():
 
 def test_the_default_step_and_method_stay_when_no_tolerance_is_given():
     scene = _scene()
-    assert scene.solver.method == "beeman" and scene.solver.dt is None and scene.dt == pytest.approx(1.2 / 200)
+    assert scene.solver.method is None and scene.solver.dt is None
+    assert scene.runner.name == "beeman" and scene.dt == pytest.approx(1.2 / 200)
 
 
 def test_a_scene_with_a_tolerance_has_no_step_until_it_is_chosen():
@@ -118,7 +119,7 @@ def test_the_chosen_run_is_within_the_tolerance_of_the_reference_solver_and_reco
     scene = _scene(tolerance=TOLERANCE)
     ds = simulate(scene)
     chosen = Scene.from_json(ds.attrs["scene"])  # the scene that ran: its method and step, no tolerance
-    assert chosen.solver.tolerance is None and chosen.solver.method == ds.attrs["solver"]
+    assert chosen.solver.tolerance is None and chosen.solver.method == ds.attrs["solver"] == chosen.runner.name
     assert chosen.dt == pytest.approx(ds.attrs["time_step"], rel=1e-12)
     assert ds.attrs["solver"] in ("rk4", "beeman")
     assert ds.attrs["solver_tolerance"] == TOLERANCE
@@ -158,3 +159,13 @@ def test_a_step_chosen_for_a_control_period_is_a_whole_fraction_of_it():
     steps = 0.12 / choice.dt
     assert steps == pytest.approx(round(steps), abs=1e-9) and round(steps) >= 1
     assert choice.scene.control_steps == round(steps)
+
+
+def test_the_default_scene_takes_a_tolerance_as_an_override():
+    """``wecss run --set solver.tolerance=1e-3``: the embedded default gives no step of its own to conflict with."""
+    from wecss.sweep import apply_overrides
+
+    default = Scene.from_toml(default_scene_path())
+    assert default.runner.name == "beeman" and default.dt == pytest.approx(1.2 / 200)
+    tolerant = apply_overrides(default, ["solver.tolerance=1e-3"])
+    assert tolerant.solver.tolerance == 1e-3 and tolerant.candidates == ("rk4", "beeman")

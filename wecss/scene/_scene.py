@@ -270,8 +270,9 @@ class Solver:
 
     Attributes
     ----------
-    method : str
-        A registered runner (``wecss.scene.available_runners()``). The built-ins: the nonlinear MFM equations by
+    method : str or None
+        A registered runner (``wecss.scene.available_runners()``); default (None) :data:`DEFAULT_METHOD`, unless
+        ``tolerance`` chooses it. The built-ins: the nonlinear MFM equations by
         the Beeman predictor-corrector (paper Eq. 52, "beeman"), the same with the M4 paper's explicit added mass
         ("beeman-explicit", see ``added_mass``), classic RK4 ("rk4", state-space radiation only) or scipy's DOP853
         at tight tolerance ("reference": verification; state-space radiation only); or the equations linearised
@@ -323,8 +324,6 @@ class Solver:
 
     def __post_init__(self) -> None:
         self._check_tolerance()
-        if self.method is None and self.tolerance is None:
-            object.__setattr__(self, "method", DEFAULT_METHOD)
         if self.method is not None:
             check_types("solver", {"method": (self.method, str)})
         if self.added_mass is not None:
@@ -381,6 +380,14 @@ class Solver:
                 f"solver.dt ({self.dt!r}) and solver.tolerance ({tol!r}) both given: the tolerance chooses the step; "
                 "give one of them"
             )
+
+    @property
+    def runner_name(self) -> str | None:
+        """The runner's name: ``method``, else :data:`DEFAULT_METHOD`, or None while ``tolerance`` is to choose
+        it (a method left out stays left out, so that a tolerance set later may still choose it)."""
+        if self.method is not None:
+            return self.method
+        return DEFAULT_METHOD if self.tolerance is None else None
 
     @property
     def step_chosen(self) -> bool:
@@ -534,9 +541,10 @@ class Scene:
         SceneError
             For a scene whose method is chosen from ``solver.tolerance`` (not yet chosen).
         """
-        if self.solver.method is None:
+        name = self.solver.runner_name
+        if name is None:
             raise SceneError(_NOT_CHOSEN.format(what="solver.method"))
-        return runner(self.solver.method)
+        return runner(name)
 
     @property
     def candidates(self) -> tuple[str, ...]:
