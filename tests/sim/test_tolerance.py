@@ -109,6 +109,8 @@ def test_a_named_method_is_kept_and_its_step_chosen():
     choice = choose_step(_scene(method="beeman", tolerance=TOLERANCE))
     assert choice.method == "beeman" and choice.scene.solver.method == "beeman"
     assert choice.scene.solver.tolerance is None and choice.scene.dt == choice.dt
+    steps = 24.0 / choice.dt  # the record repeats every 20 Tp: a whole number of steps (its excitation one FFT)
+    assert steps == pytest.approx(round(steps), abs=1e-9)
 
 
 def test_the_chosen_run_is_within_the_tolerance_of_the_reference_solver_and_records_its_choice():

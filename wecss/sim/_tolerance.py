@@ -36,7 +36,7 @@ import numpy as np
 
 from ..compiled import MIN_STEPS_PER_PERIOD
 from ..control import ControlledScene, Controller, compile_scene
-from ..scene import Scene, SceneError, runner
+from ..scene import Scene, SceneError, resolve_time, runner
 from ._rk4 import RK4, RK4_POLE_LIMIT, Rk4
 from ._rk4_check import rk4_step_limit
 
@@ -285,15 +285,28 @@ def _plan(scene: Scene, compiled: ControlledScene, method: str, tol: float) -> _
 
 
 def _fitted(scene: Scene, h: float, cap: float) -> float:
-    """``h`` [s] made a whole fraction of the control period (when the scene gives one), and of the duration's
-    steps no longer than ``cap``."""
+    """``h`` [s], at most ``cap``, made a whole fraction of the control period when the scene gives one, else of the
+    wave record's period (:func:`record_period`): on such a grid the excitation of the whole run is one inverse FFT
+    (or blocks of chirp-z transforms), not sums of the components at every step."""
     h = min(h, cap)
     if scene.controller.dt is not None:
-        from ..scene import resolve_time
-
         control = resolve_time(scene.controller.dt, scene.sea.period, "controller.dt")
-        h = control / math.ceil(control / h * (1 - 1e-12))
+        return float(control / math.ceil(control / h * (1 - 1e-12)))
+    period = record_period(scene)
+    if period is not None:
+        h = period / math.ceil(period / h * (1 - 1e-12))
     return float(h)
+
+
+def record_period(scene: Scene) -> float | None:
+    """The period [s] after which the scene's wave record repeats (2 pi / d_omega for a periodic irregular sea, the
+    wave period for a regular one), or None."""
+    sea = scene.sea
+    if sea.kind == "regular":
+        return float(sea.period) if sea.period else None
+    if sea.kind in ("jonswap", "pierson-moskowitz", "tabulated") and sea.periodic:
+        return 2 * math.pi / sea.d_omega if sea.d_omega is not None else sea.duration_s
+    return None
 
 
 def _pilot_scene(scene: Scene, method: str, dt: float, coarse: float) -> Scene:
