@@ -35,18 +35,19 @@ LONG = "1000 Tp"
 
 READING = (
     "How to read it. For the default scene the choice takes RK4 at about Tp/28 (its estimated error a quarter of "
-    "the tolerance, `wecss.sim._tolerance.SAFETY`): 7 times fewer steps than Beeman at Tp/200 and about 5 times "
-    "fewer evaluations of the equations (4 per RK4 step against about 3 per Beeman step). The time loop gains "
-    "only about 2x, because an RK4 step costs 3 to 4 Beeman steps (37.4 against 12.2 us on a quiet machine, "
-    '"Run time against error"): its kernel allocates its stage arrays and rates in every evaluation, and so pays '
-    "reference counts on the Plant and Workspace tuples, which Beeman's kernels were rewritten to avoid (issue "
-    "15). The whole call gains less on 100 Tp: the choice (three compiles and two pilot runs of 10 Tp) costs a "
-    "few tenths of a second, about what it saves; on the 1000-Tp run it is small beside the run. The target of "
-    "issue 29 (3x faster at 1e-3 on the default scene) is met in steps and evaluations, not in time: an RK4 kernel "
-    "without allocations per evaluation is what is missing. The statistics are within 2e-4 of the reference's at "
-    "Tp/200 and within 1e-4 at the same steps, inside the tolerance and below the recorded estimate; the "
-    "difference between the two columns is the sampling of the window mean at the coarser step (1.3e-2 on a "
-    "10-Tp run, whose window holds some 120 steps: see docs/simulator.md, `tolerance_window_sampling`)."
+    "the tolerance, `wecss.sim._tolerance.SAFETY`): 7 times fewer steps than Beeman at Tp/200. The time loop "
+    "gains only about 2x, because an RK4 step costs about 3 Beeman steps (37.4 against 12.2 us on a quiet "
+    'machine, "Run time against error"): each of its 4 stages needs the configuration\'s terms anew '
+    "(kinematics, mass matrix and its factor: `configure`), where Beeman predicts the configuration once per step "
+    "and its corrector's evaluations redo only the velocity terms (`respond`). The whole call gains less on 100 "
+    "Tp: the choice (three compiles and two pilot runs of 10 Tp) costs a few tenths of a second, about what it "
+    "saves; on the 1000-Tp run it is small beside the run. The target of issue 29 (3x faster at 1e-3 on the "
+    "default scene) is met in steps, not in time: RK4's step is bounded by its stability near Tp/21, where it "
+    "would gain about 3x at best; cheaper stages, or an integrator with one configuration per step and a larger "
+    "stable step, are what is missing. The statistics are within 2e-4 of the reference's at Tp/200 and within "
+    "1e-4 at the same steps, inside the tolerance and below the recorded estimate; the difference between the two "
+    "columns is the sampling of the window mean at the coarser step (1.3e-2 on a 10-Tp run, whose window holds "
+    "some 120 steps: see docs/simulator.md, `tolerance_window_sampling`)."
 )
 
 
