@@ -24,7 +24,7 @@ import numpy as np
 from ..compiled import CompiledScene, linear_damping
 from ..compiled.kernels import integrate_configuration, kinematics, pto_strokes, world_jacobian
 from ..linear import linearize
-from ..scene import Outputs, SceneError
+from ..scene import SceneError
 
 #: The step must be stable at this multiple of itself (the configurations are sampled, not searched).
 RK4_MARGIN = 1.1
@@ -141,10 +141,11 @@ def _limit_key(compiled: CompiledScene) -> tuple[Any, ...]:
     """What the limit depends on: the scene but its step and outputs, the device (by identity: the compile cache
     makes a new one when its files change) and the PTO gains in the plant."""
     scene = compiled.scene
-    solver = dataclasses.replace(scene.solver, method="rk4", dt=None, tolerance=None)
-    plain = dataclasses.replace(scene, solver=solver, outputs=Outputs())
+    solver = dataclasses.replace(scene.solver, dt=None, tolerance=None)  # sections, not a Scene: no step to check
+    sections = (scene.device, scene.sea, scene.controller, solver, scene.radiation, scene.hydrodynamics, scene.initial)
     p = compiled.plant
-    return (plain, id(compiled.device), p.pto_damping.tobytes(), p.pto_stiffness.tobytes(), compiled.linear_controller)
+    gains = (p.pto_damping.tobytes(), p.pto_stiffness.tobytes(), compiled.linear_controller)
+    return (*sections, id(compiled.device), *gains)
 
 
 def rk4_step_limit(compiled: CompiledScene) -> tuple[float, str]:
