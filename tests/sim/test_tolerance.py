@@ -171,3 +171,24 @@ def test_the_default_scene_takes_a_tolerance_as_an_override():
     assert default.runner.name == "beeman" and default.dt == pytest.approx(1.2 / 200)
     tolerant = apply_overrides(default, ["solver.tolerance=1e-3"])
     assert tolerant.solver.tolerance == 1e-3 and tolerant.candidates == ("rk4", "beeman")
+
+
+def test_the_estimate_is_of_the_last_step_the_pilots_measured(monkeypatch):
+    """Pilots that always ask for a far smaller step (an error estimate of 1): at most MAX_PILOTS pairs, and the
+    recorded estimate scales the last measured pair's, at the step that pair was run at."""
+    from wecss.sim import _tolerance
+
+    measured: list[float] = []
+
+    def fake_pilot(scene, method, dt, coarse, controller):
+        if dt == coarse:
+            measured.append(dt)
+        statistics = np.ones((2, 1)) * (2.0 if dt == coarse else 1.5)  # relative difference 1/3: estimate 2/3
+        return _tolerance._PilotRun(statistics, np.zeros((2, 1)))
+
+    monkeypatch.setattr(_tolerance, "_pilot_run", fake_pilot)
+    choice = choose_step(_scene(method="beeman", tolerance=TOLERANCE))
+    assert len(measured) == _tolerance.MAX_PILOTS and measured == sorted(measured, reverse=True)
+    assert choice.pilot_dt == measured[-1] and choice.pilot_estimate == pytest.approx(2 / 3)
+    assert choice.estimate == pytest.approx(2 / 3 * (choice.dt / choice.pilot_dt) ** 2)
+    assert choice.dt < choice.pilot_dt

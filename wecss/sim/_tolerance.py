@@ -183,12 +183,12 @@ def choose_step(scene: Scene, controller: Controller | None = None) -> StepChoic
     plan = min(plans, key=lambda p: p.work)
     order = plan.order
     h = plan.guess
-    for _ in range(MAX_PILOTS):
+    for attempt in range(MAX_PILOTS):
         coarse = _pilot_run(scene, plan.method, h, h, controller)
         fine = _pilot_run(scene, plan.method, h / 2, h, controller)
         pilot = 2.0 * _relative_difference(coarse.statistics, fine.statistics, plan.kinds)
         wanted = h * (SAFETY * tol / pilot) ** (1.0 / order) if pilot > 0 else math.inf  # inf: equal to round-off
-        if wanted >= h / REPILOT_RATIO:
+        if wanted >= h / REPILOT_RATIO or attempt == MAX_PILOTS - 1:  # h stays the step the estimate is of
             break
         h = _fitted(scene, wanted, plan.cap_step)  # far below the pilot's step: measure again nearer to it
     chosen = _fitted(scene, min(wanted, MAX_GROWTH * h, plan.cap_step), plan.cap_step)
