@@ -207,3 +207,11 @@ def test_info_of_a_partial_result_reports_how_far_it_got(
     out = capsys.readouterr().out
     assert f"partial result: stopped after {parts[0]} of" in out and out.rstrip().endswith("when a run finishes")
     assert f"{parts[0]} saved steps, t = 0 to" in out
+
+
+def test_run_with_a_tolerance_prints_the_choice(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``--set solver.tolerance=1e-3``: the summary says which integrator and step were chosen, and why."""
+    out = tmp_path / "r.nc"
+    assert main(["run", _small_scene(tmp_path), "-o", str(out), "-q", "--set", "solver.tolerance=1e-3"]) == 0
+    text = capsys.readouterr().out
+    assert "solver.tolerance = 0.001: " in text and "estimated relative error of the statistics" in text

@@ -188,6 +188,8 @@ def _summary(ds: Any) -> str:
         f"{ds.attrs.get('title', 'result')}: {ds.attrs.get('solver')} dt {ds.attrs.get('time_step'):.4g} s, "
         f"{ds.attrs.get('n_steps')} steps; radiation: {ds.attrs.get('radiation')}"
     ]
+    if "tolerance_choice" in ds.attrs:  # the step chosen from solver.tolerance
+        lines.append(str(ds.attrs["tolerance_choice"]))
     power = mean_power(ds)
     rms = rms_hinge_angle(ds) if ("pto_angle" in ds or "rms_pto_angle" in ds) else None
     lines.append(f"{'PTO':<12}{'mean power [W]':>16}{'RMS angle [deg]':>18}")

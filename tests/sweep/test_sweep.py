@@ -263,3 +263,23 @@ def test_a_sweep_file_with_a_utf8_byte_order_mark_is_read(tmp_path: Path) -> Non
     bom = tmp_path / "bom.toml"
     bom.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
     assert Sweep.from_toml(bom).cases == Sweep.from_toml(plain).cases
+
+
+def test_a_case_with_a_tolerance_has_its_step_chosen_as_simulate_does(tmp_path: Path) -> None:
+    """A sweep over sea.height with solver.tolerance: every case runs (not refused at compile time for lack of a
+    step) and records the choice, as a lone ``simulate`` would."""
+    base = {
+        "device": {"name": "m4-111"},
+        "sea": {"kind": "jonswap", "height": 0.04, "period": 1.2, "duration": "12 Tp", "ramp": "2 Tp"},
+        "solver": {"method": "beeman", "tolerance": 1e-2},
+        "outputs": {"statistics_only": True, "variables": []},
+    }
+    sweep = Sweep.of(Scene.from_dict(base), {"sea.height": [0.04, 0.05]})
+    ds = run_sweep(sweep, tmp_path / "out")
+    assert ds.sizes["sea.height"] == 2 and np.all(np.isfinite(ds.mean_pto_power.values))
+    paths = sorted((tmp_path / "out").glob("c[0-9]*.nc"))  # the cases, not combined.nc
+    assert len(paths) == 2
+    for path in paths:
+        with xr.open_dataset(path) as case:
+            assert case.attrs["solver_tolerance"] == 1e-2 and case.attrs["solver"] == "beeman"
+            assert Scene.from_json(case.attrs["scene"]).solver.tolerance is None  # the scene that ran

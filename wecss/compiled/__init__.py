@@ -1,6 +1,7 @@
 """A scene compiled to flat arrays once (the plant, the radiation memory, the wave components), without its
 controller (``wecss.control`` attaches it). The kernels that read the arrays are in ``wecss.compiled.kernels``."""
 
+from ._compile import MIN_STEPS_PER_PERIOD as MIN_STEPS_PER_PERIOD
 from ._compile import CompiledScene as CompiledScene
 from ._compile import clear_compile_cache as clear_compile_cache
 from ._compile import compile_plant as compile_plant

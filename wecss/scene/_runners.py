@@ -59,6 +59,9 @@ class Capabilities:
         runner).
     order : int
         Order of accuracy in the step (0: not a time stepper, e.g. an exact solution).
+    tolerance : bool
+        Its step may be chosen from ``solver.tolerance`` (a fixed-step runner whose error shrinks as the step to
+        its ``order``; ``wecss.sim.choose_step``).
     """
 
     radiation: tuple[str, ...] = RADIATION_METHODS
@@ -72,6 +75,7 @@ class Capabilities:
     terms: bool = False
     hydrodynamics: tuple[str, ...] = ()
     order: int = 2
+    tolerance: bool = False
 
     def __post_init__(self) -> None:
         unknown = sorted(set(self.radiation) - set(RADIATION_METHODS))
@@ -99,6 +103,8 @@ class Runner(ABC):
     capabilities: Capabilities = Capabilities()
     radiation_reason: str = ""
     """Why the runner takes only the radiation methods it declares (said when it refuses another)."""
+    tolerance_reason: str = ""
+    """Why the runner takes no ``solver.tolerance`` (said when it refuses one: ": ..." or empty)."""
 
     def check(self, scene: Any) -> None:
         """Refuse a scene (a ``wecss.scene.Scene``) this runner cannot run.
@@ -224,6 +230,11 @@ def available_runners() -> list[str]:
     """Names of the registered runners."""
     _load_entry_points()
     return sorted(_REGISTERED)
+
+
+def tolerance_runners() -> list[str]:
+    """Names of the registered runners whose step ``solver.tolerance`` may choose."""
+    return [name for name in available_runners() if runner(name).capabilities.tolerance]
 
 
 def runner(name: str) -> Runner:

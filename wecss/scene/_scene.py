@@ -40,7 +40,7 @@ from ._checks import check_choice, check_keys, check_types
 from ._errors import SceneError
 from ._hydrodynamics import Hydrodynamics, Initial
 from ._parameters import Parameters
-from ._runners import RADIATION_METHODS, Runner, runner
+from ._runners import RADIATION_METHODS, Runner, runner, tolerance_runners
 
 SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm")
 LINEAR_HOLDS = ("foh", "zoh")
@@ -51,6 +51,23 @@ is read as this method."""
 OUTPUT_GROUPS = GROUP_NAMES
 DEFAULT_OUTPUTS = DEFAULT_GROUPS
 
+
+DEFAULT_METHOD: str = "beeman"
+"""``solver.method`` when a scene gives neither a method nor a tolerance."""
+
+DEFAULT_DT: str = "Tp/200"
+"""``solver.dt`` when a scene gives neither a step nor a tolerance."""
+
+MAX_TOLERANCE: float = 0.1
+"""Largest ``solver.tolerance`` (a relative error of the statistics)."""
+
+TOLERANCE_CANDIDATES: tuple[str, ...] = ("rk4", "beeman")
+"""The runners ``solver.tolerance`` chooses from when the scene names no ``solver.method``."""
+
+_NOT_CHOSEN = (
+    "{what} of this scene is chosen from solver.tolerance when the run starts: simulate(scene) chooses it, "
+    "wecss.sim.choose_step(scene).scene is the scene it runs"
+)
 
 MAX_STEPS: float = 1e9
 """Most steps a scene may ask for."""
@@ -263,16 +280,23 @@ class Solver:
 
     Attributes
     ----------
-    method : str
-        A registered runner (``wecss.scene.available_runners()``). The built-ins: the nonlinear MFM equations by
+    method : str or None
+        A registered runner (``wecss.scene.available_runners()``); default (None) :data:`DEFAULT_METHOD`, unless
+        ``tolerance`` chooses it. The built-ins: the nonlinear MFM equations by
         the Beeman predictor-corrector (paper Eq. 52, "beeman"), the same with the M4 paper's explicit added mass
         ("beeman-explicit", see ``added_mass``), classic RK4 ("rk4", state-space radiation only) or scipy's DOP853
         at tight tolerance ("reference": verification; state-space radiation only); or the equations linearised
         about the static equilibrium: "linear", the linear state-space model stepped exactly (state-space
         radiation only; ``wecss.linear``), or "frequency", the exact frequency-domain steady state from the
         database's A(omega) and B(omega) (no ramp, no transient; controllers with linear gains only).
-    dt : float or str
-        Step [s] or relative ("Tp/200").
+    dt : float or str or None
+        Step [s] or relative ("Tp/200"); default (None) :data:`DEFAULT_DT`, unless ``tolerance`` chooses it.
+    tolerance : float or None
+        Relative error [-] allowed on the statistics the run reports (mean PTO power, RMS PTO strokes), in
+        (0, :data:`MAX_TOLERANCE`]: the step (and, without a ``method``, the integrator: ``rk4`` or ``beeman``) is
+        chosen from an error estimate when the run starts (``wecss.sim.choose_step``), and the result records the
+        choice and the estimate. Exclusive with ``dt`` (a scene that gives both is refused); only the fixed-step
+        runners take it (``Capabilities.tolerance``: ``beeman``, ``rk4``, ``linear``).
     corrector_tol : float
         Beeman: the corrector stops when the change of the accelerations is below this share of their size.
     max_corrector_iterations : int
@@ -300,8 +324,9 @@ class Solver:
         (a stiff plant: an explicit method's step is bounded by the fastest mode); default None: refused.
     """
 
-    method: str = "beeman"
-    dt: float | str = "Tp/200"
+    method: str | None = None
+    dt: float | str | None = None
+    tolerance: float | None = None
     corrector_tol: float = 1e-6
     max_corrector_iterations: int = 30
     angle_bound: float = 1.5
@@ -312,13 +337,15 @@ class Solver:
     allow_large: bool | None = None
 
     def __post_init__(self) -> None:
-        check_types("solver", {"method": (self.method, str)})
+        self._check_tolerance()
+        if self.method is not None:
+            check_types("solver", {"method": (self.method, str)})
         if self.allow_large is not None and not isinstance(self.allow_large, bool):
             raise SceneError(f"solver.allow_large must be true or false; got {self.allow_large!r}")
         if self.added_mass is not None:
             check_choice("solver.added_mass", self.added_mass, ADDED_MASS_TREATMENTS)
         if self.added_mass == "explicit" or self.method == EXPLICIT_RUNNER:
-            if self.method not in ("beeman", EXPLICIT_RUNNER):
+            if self.method not in (None, "beeman", EXPLICIT_RUNNER):
                 raise SceneError(
                     f"solver.added_mass 'explicit' (the M4 paper's iterated added mass) needs solver.method 'beeman' "
                     f"(or {EXPLICIT_RUNNER!r}); got method {self.method!r}"
@@ -330,7 +357,13 @@ class Solver:
                 )
             object.__setattr__(self, "method", EXPLICIT_RUNNER)  # one name for the runner
             object.__setattr__(self, "added_mass", "explicit")
-        runner(self.method)  # a registered runner (SceneError listing them otherwise)
+        if self.method is not None:
+            found = runner(self.method)  # a registered runner (SceneError listing them otherwise)
+            if self.tolerance is not None and not found.capabilities.tolerance:
+                raise SceneError(
+                    f"solver.tolerance chooses the step of a fixed-step runner ({', '.join(tolerance_runners())}); "
+                    f"solver.method {self.method!r} does not take it{found.tolerance_reason}"
+                )
         if self.hold is not None:
             check_choice("solver.hold", self.hold, LINEAR_HOLDS)
         if not 0 < self.corrector_tol < 1:
@@ -344,6 +377,38 @@ class Solver:
         bound = self.translation_bound
         if bound is not None and not (isinstance(bound, int | float) and not isinstance(bound, bool) and bound > 0):
             raise SceneError(f"solver.translation_bound must be a positive length [m] or absent; got {bound!r}")
+
+    def _check_tolerance(self) -> None:
+        tol = self.tolerance
+        if tol is None:
+            return
+        if isinstance(tol, bool) or not isinstance(tol, int | float):
+            raise SceneError(
+                f"solver.tolerance is a relative error, a number in (0, {MAX_TOLERANCE:g}] such as 1e-3; got {tol!r} "
+                f"({type(tol).__name__})"
+            )
+        if not (math.isfinite(tol) and 0 < tol <= MAX_TOLERANCE):
+            raise SceneError(
+                f"solver.tolerance is a relative error in (0, {MAX_TOLERANCE:g}], such as 1e-3; got {tol!r}"
+            )
+        if self.dt is not None:
+            raise SceneError(
+                f"solver.dt ({self.dt!r}) and solver.tolerance ({tol!r}) both given: the tolerance chooses the step; "
+                "give one of them"
+            )
+
+    @property
+    def runner_name(self) -> str | None:
+        """The runner's name: ``method``, else :data:`DEFAULT_METHOD`, or None while ``tolerance`` is to choose
+        it (a method left out stays left out, so that a tolerance set later may still choose it)."""
+        if self.method is not None:
+            return self.method
+        return DEFAULT_METHOD if self.tolerance is None else None
+
+    @property
+    def step_chosen(self) -> bool:
+        """The step is chosen from ``tolerance`` when the run starts (``wecss.sim.choose_step``)."""
+        return self.tolerance is not None
 
     @property
     def linear_hold(self) -> str:
@@ -480,6 +545,9 @@ class Scene:
     initial: Initial = field(default_factory=Initial)
 
     def __post_init__(self) -> None:
+        if self.solver.step_chosen:  # the step-dependent checks wait for the chosen step (``choose_step``)
+            self._check_step_choice()
+            return
         dt = self.dt
         if dt >= self.sea.duration_s:
             raise SceneError(f"solver.dt ({dt:.4g} s) must be shorter than sea.duration ({self.sea.duration_s:.4g} s)")
@@ -489,8 +557,43 @@ class Scene:
 
     @property
     def runner(self) -> Runner:
-        """The runner of ``solver.method`` (``wecss.scene.runner``)."""
-        return runner(self.solver.method)
+        """The runner of ``solver.method`` (``wecss.scene.runner``).
+
+        Raises
+        ------
+        SceneError
+            For a scene whose method is chosen from ``solver.tolerance`` (not yet chosen).
+        """
+        name = self.solver.runner_name
+        if name is None:
+            raise SceneError(_NOT_CHOSEN.format(what="solver.method"))
+        return runner(name)
+
+    @property
+    def candidates(self) -> tuple[str, ...]:
+        """The runners ``solver.tolerance`` may choose from: the scene's ``solver.method`` when it names one, else
+        those of :data:`TOLERANCE_CANDIDATES` that can run the scene (in that order)."""
+        if self.solver.method is not None:
+            return (self.solver.method,)
+        found = []
+        for name in TOLERANCE_CANDIDATES:
+            try:
+                runner(name).check(self)
+            except SceneError:
+                continue
+            found.append(name)
+        return tuple(found)
+
+    def _check_step_choice(self) -> None:
+        """A scene whose step ``solver.tolerance`` chooses: its runner (or one of the candidates) can run it, and
+        ``controller.dt`` reads."""
+        if self.controller.dt is not None:
+            resolve_time(self.controller.dt, self.sea.period, "controller.dt")
+        if self.solver.method is not None:
+            self.runner.check(self)
+        elif not self.candidates:
+            runner(TOLERANCE_CANDIDATES[-1]).check(self)  # raises, naming what the most general one refuses
+            raise SceneError(f"solver.tolerance: none of {', '.join(TOLERANCE_CANDIDATES)} can run this scene")
 
     def _check_size(self) -> None:
         """Refuse runs that keep fewer than two saved steps or a statistics window of fewer than two steps, and runs
@@ -526,8 +629,17 @@ class Scene:
 
     @cached_property
     def dt(self) -> float:
-        """Time step [s] (read once from ``solver.dt``)."""
-        return resolve_time(self.solver.dt, self.sea.period, "solver.dt")
+        """Time step [s] (read once from ``solver.dt``, default :data:`DEFAULT_DT`).
+
+        Raises
+        ------
+        SceneError
+            For a scene whose step is chosen from ``solver.tolerance`` (not yet chosen).
+        """
+        if self.solver.step_chosen:
+            raise SceneError(_NOT_CHOSEN.format(what="solver.dt"))
+        given = self.solver.dt if self.solver.dt is not None else DEFAULT_DT
+        return resolve_time(given, self.sea.period, "solver.dt")
 
     @cached_property
     def n_steps(self) -> int:

@@ -33,3 +33,5 @@ from ._reproduce import fit_difference as fit_difference
 from ._reproduce import gains_difference as gains_difference
 from ._reproduce import scene_from_result as scene_from_result
 from ._simulate import simulate as simulate
+from ._tolerance import StepChoice as StepChoice
+from ._tolerance import choose_step as choose_step

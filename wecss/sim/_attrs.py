@@ -119,11 +119,11 @@ def result_attrs(
         "title": f"wecss simulation of {controlled.device.name}",
         "Conventions": "CF-1.10",
         "history": f"{_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} wecss {__version__}: simulate "
-        f"({scene.solver.method})",
+        f"({scene.runner.name})",
         "wecss_version": __version__,
         "scene": scene.to_json(),
         "device": controlled.device.name,
-        "solver": scene.solver.method,
+        "solver": scene.runner.name,
         "time_step": controlled.dt,
         "n_steps": n_steps,
         "saved_every": scene.outputs.every,

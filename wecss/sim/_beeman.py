@@ -190,7 +190,12 @@ class Beeman(FixedStepRunner):
         "Beeman predictor-corrector (M4 paper Eq. 52), implicit added mass, trapezoidal fallback on stiff steps"
     )
     capabilities = Capabilities(
-        streaming=True, initial_state=True, hydrodynamics=("body-exact", "drag"), terms=True, order=2
+        streaming=True,
+        initial_state=True,
+        hydrodynamics=("body-exact", "drag"),
+        terms=True,
+        order=2,
+        tolerance=True,
     )
 
     def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:

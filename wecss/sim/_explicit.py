@@ -170,6 +170,7 @@ class BeemanExplicit(Beeman):
 
     name = "beeman-explicit"
     description = "Beeman with the M4 paper's explicit added mass, iterated with the corrector (replication option)"
+    tolerance_reason = ": it replicates the paper's method at the step it is given (give solver.dt)"
     capabilities = Capabilities(streaming=True, initial_state=True, order=2)
 
     def prepare(self, controlled: ControlledScene) -> Any:

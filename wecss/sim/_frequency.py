@@ -22,6 +22,7 @@ class FrequencyDomain(Runner):
 
     name = "frequency"
     description = "the exact frequency-domain steady state of the linearised equations, from A(omega) and B(omega)"
+    tolerance_reason = ": it has no step error (the exact steady state at the scene's steps, whatever dt)"
     capabilities = Capabilities(
         memory_model=False,
         sampled_controllers=False,

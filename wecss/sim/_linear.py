@@ -35,6 +35,7 @@ class LinearRunner(Runner):
         initial_state=True,
         hydrodynamics=("drag",),
         order=2,
+        tolerance=True,
     )
     radiation_reason = "the linear model carries the radiation memory as states"
 

@@ -25,6 +25,7 @@ class ReferenceSolver(Runner):
 
     name = "reference"
     description = "scipy DOP853 at tight tolerance on (q, v, radiation states), for verification"
+    tolerance_reason = ": its step adapts to its own tolerance, solver.reference_rtol"
     capabilities = Capabilities(
         radiation=("state_space", "none"),
         sampled_controllers=False,

@@ -127,6 +127,7 @@ class Rk4(FixedStepRunner):
         hydrodynamics=("body-exact", "drag"),
         terms=True,
         order=4,
+        tolerance=True,
     )
     stages = 2
     radiation_reason = (

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import xarray as xr
 
@@ -17,6 +18,7 @@ from ..provenance import with_relative_paths
 from ..scene import Scene
 from ._dataset import build_result
 from ._stream import ResultStream, streamable
+from ._tolerance import choose_step
 
 
 def simulate(
@@ -58,6 +60,10 @@ def simulate(
         (JSON) and the run's solver, settings, timings and notes in the attributes. A streamed run's is opened
         lazily from its file (values are read when used; close it, or use it in a ``with`` block, when done).
 
+    With ``solver.tolerance``, the integrator and the step are chosen first (``wecss.sim.choose_step``: short
+    pilot runs); the result's ``scene`` attribute is the scene that ran (its method and step), and its attributes
+    ``solver_tolerance``, ``tolerance_estimate`` and ``tolerance_choice`` record the choice.
+
     Raises
     ------
     SceneError
@@ -87,6 +93,10 @@ def simulate(
     if path is not None and isinstance(scene, Scene | CompiledScene):  # before any work
         plain = scene if isinstance(scene, Scene) else scene.scene
         refuse_overwrite(result_files(path), {**inputs, **scene_inputs(plain)})
+    choice = None
+    if isinstance(scene, Scene) and scene.solver.step_chosen:  # the step from solver.tolerance, before the run
+        choice = choose_step(scene, controller)
+        scene = choice.scene
     if isinstance(scene, ControlledScene):
         if controller is not None:
             raise ValueError("this compiled scene has a controller already; give the plant (compile_plant) or a scene")
@@ -98,10 +108,12 @@ def simulate(
     else:
         raise TypeError(f"simulate takes a Scene, a CompiledScene or a scene file; got {type(scene).__name__}")
     runner = controlled.scene.runner
+    chosen = choice.attrs() if choice is not None else {}
     if path is not None and streamable(controlled):
-        return _streamed(controlled, progress, path, compress, float32)
+        return _streamed(controlled, progress, path, compress, float32, chosen)
     with interrupts_surfaced():  # Ctrl-C inside a compiled kernel is an interrupt, not a failure of the run
         record = runner.run(controlled, progress=progress)
+    record.solver.update(chosen)
     ds = build_result(controlled, record)
     if path is not None:
         ds.attrs = with_relative_paths(ds.attrs, path)  # the input files' paths from the result's folder
@@ -115,7 +127,12 @@ def result_files(path: str | os.PathLike[str]) -> dict[str, Path]:
 
 
 def _streamed(
-    controlled: ControlledScene, progress: bool, path: str | os.PathLike[str], compress: int, float32: bool
+    controlled: ControlledScene,
+    progress: bool,
+    path: str | os.PathLike[str],
+    compress: int,
+    float32: bool,
+    chosen: dict[str, Any],
 ) -> xr.Dataset:
     stream = ResultStream(controlled, path, compress=compress, float32=float32)
     try:
@@ -124,4 +141,5 @@ def _streamed(
     except BaseException as err:
         stream.stop(err)
         raise
+    record.solver.update(chosen)
     return xr.open_dataset(stream.finish(record), engine="netcdf4")

@@ -27,19 +27,24 @@ def run_case(scene_json: str) -> CaseOutcome:
     (KeyboardInterrupt, also as the cause of another exception) is raised: the case is not done, never failed.
 
     The compiled plant's parts that the case's swept values do not change are cached per process by
-    ``wecss.compiled`` (device, hydrodynamic coupling, equilibrium, radiation kernel).
+    ``wecss.compiled`` (device, hydrodynamic coupling, equilibrium, radiation kernel). A case with
+    ``solver.tolerance`` has its step chosen first (``wecss.sim.choose_step``, counted in the compile time), as
+    ``simulate`` does.
     """
     from ..control import compile_scene
     from ..scene import Scene
-    from ..sim import simulate
+    from ..sim import choose_step, simulate
 
     start = time.perf_counter()
     compiled_at = start
     try:
         scene = Scene.from_json(scene_json)
-        compiled = compile_scene(scene)
+        choice = choose_step(scene) if scene.solver.step_chosen else None  # solver.tolerance: step chosen first
+        compiled = compile_scene(choice.scene if choice is not None else scene)
         compiled_at = time.perf_counter()
         ds = simulate(compiled)
+        if choice is not None:
+            ds.attrs.update(choice.attrs())
     except Exception as err:  # recorded with its traceback; the sweep goes on
         if interrupt_behind(err) is not None:  # Ctrl-C is no failure of the case: it stays to be done
             raise KeyboardInterrupt from None
