@@ -19,11 +19,14 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	$(VENV)/bin/wecss run
 
+# the suite on one worker process per core (pytest-xdist); PYTEST_WORKERS=0 runs it in this process
+PYTEST_WORKERS ?= auto
+
 test: $(STAMP)
-	$(PY) -m pytest
+	$(PY) -m pytest -n $(PYTEST_WORKERS)
 
 test-all: $(STAMP)
-	$(PY) -m pytest -m "slow or not slow"
+	$(PY) -m pytest -n $(PYTEST_WORKERS) -m "slow or not slow"
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff format --check .
