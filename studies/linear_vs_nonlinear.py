@@ -20,7 +20,7 @@ and the tables in ``docs/linear_vs_nonlinear.md``. Parts 2 and 3's Wavestar case
 ``../shared/data`` (left out with a message when they are absent).
 
     python studies/linear_vs_nonlinear.py           # everything (25 min measured, the machine under load 3)
-    python studies/linear_vs_nonlinear.py --quick   # m4-111, 2 heights, 10 Tp, one body-exact run (CI smoke run)
+    python studies/linear_vs_nonlinear.py --quick   # m4-111 at Hs 0.04 m, 10 Tp: parts 1 and 2 once (CI smoke run)
 """
 
 from __future__ import annotations
