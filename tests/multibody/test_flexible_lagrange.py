@@ -191,8 +191,12 @@ def mfm():
     inv = pendulum_invariants(LENGTH, MASS_PER_LENGTH, EI)
     elastic = multibody.ElasticBody(names=("w1", "w2"), invariants=inv)
     body = multibody.Body("beam", inv.mass, inv.inertia, center_of_mass=inv.origin, elastic=elastic)
-    joint = multibody.Joint("pivot", "revolute", child="beam", axis=(0.0, 1.0, 0.0), point=(0.0, 0.0, 0.0))
-    model = multibody.Multibody([body], [joint])
+    ground = multibody.Body("ground", 1.0, [1.0, 1.0, 1.0], [0.0, 0.0, 0.0])  # fixed: its mass plays no part
+    joints = [
+        multibody.Joint("base", "fixed", child="ground"),
+        multibody.Joint("pivot", "revolute", child="beam", parent="ground", axis=(0.0, 1.0, 0.0), point=(0.0,) * 3),
+    ]
+    model = multibody.Multibody([ground, body], joints)
     return multibody, multibody.Dynamics(model), model
 
 

@@ -1,11 +1,14 @@
-"""Moving Frame Method multibody core: SE(3) helpers, bodies (with generalised modes) and joints, tree kinematics
-(B, Bdot, D) and dynamics."""
+"""Moving Frame Method multibody core: SE(3) helpers, bodies (with generalised modes, or flexible in a floating frame)
+and joints, tree kinematics (B, Bdot, D) and dynamics."""
 
 from ._dynamics import Dynamics as Dynamics
 from ._dynamics import body_mass_matrix as body_mass_matrix
+from ._dynamics import elastic_energy as elastic_energy
 from ._dynamics import gravity_force as gravity_force
 from ._dynamics import potential_energy as potential_energy
 from ._dynamics import structural_force as structural_force
+from ._elastic import Attachment as Attachment
+from ._elastic import ElasticBody as ElasticBody
 from ._hydrostatics import HydroCoupling as HydroCoupling
 from ._kinematics import KinematicState as KinematicState
 from ._kinematics import configuration_rate as configuration_rate

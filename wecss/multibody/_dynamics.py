@@ -1,14 +1,17 @@
 """MFM dynamics (paper Eq. 46) with the infinite-frequency added mass in the mass matrix:
 
-    M* = B' (M + A_inf) B,   N* = B' ((M + A_inf) Bdot + D M B),   F* = B' F,
+    M* = B' (M + A_inf) B,   N* = B' ((M + A_inf) Bdot + H B),   F* = B' F,
     v_dot = M*^-1 (F* - N* v)
 
 Cartesian forces F hold, per body, the world-frame force at the centre of mass followed by the moment
 about the centre of mass in body axes (as the paper's Cartesian velocities), then the generalised force on each
-of its modes [J]. The kinetic energy T = 1/2 v' M* v changes at the rate v' F* (the D M B term does no work),
-which the tests check. The modes' structural stiffness and damping are generalised forces of their own
-(:func:`structural_force`); the rigid motion and the modes are coupled only through the added mass (the
-inertial coupling of a flexible body is neglected, see ``_modes``).
+of its modes [J]. H X is the Cartesian quadratic-velocity vector: D M X (the gyroscopic w x J w) for a rigid body;
+for a flexible body (``Body.elastic``) its mass block depends on the modal coordinates and H adds
+Mdot and the modes' -1/2 Y' dM/dxi Y (``wecss.multibody._elastic``). The kinetic energy T = 1/2 v' M* v changes at
+the rate v' F* (the H term does no work), which the tests check. The modes' structural stiffness and damping (and a
+flexible body's geometric stiffening) are generalised forces of their own (:func:`structural_force`); a body's
+generalised modes without an elastic model are coupled to the rigid motion only through the added mass (see
+``_modes``).
 """
 
 from __future__ import annotations
@@ -21,16 +24,37 @@ from ._kinematics import KinematicState, kinematics
 from ._tree import Multibody
 
 
-def body_mass_matrix(model: Multibody) -> np.ndarray:
+def body_mass_matrix(model: Multibody, q: np.ndarray | None = None) -> np.ndarray:
     """Block-diagonal (n_cart, n_cart) mass matrix diag(m I_3, J, M_modes) per body (Eq. 43, with the generalised
-    mass of the body's modes [kg m^2]; no inertial coupling between the rigid rows and the modes)."""
+    mass of the body's modes [kg m^2]; no inertial coupling between the rigid rows and the modes), a flexible body's
+    rotation and modes block its M(xi) about its centre of mass (``ElasticBody.relative_mass``) at the modal
+    coordinates of ``q`` (default: undeformed)."""
     out = np.zeros((model.n_cart, model.n_cart))
     for i, body in enumerate(model.bodies):
         s, n = model.cart_start[i], body.modes.n
         out[s : s + 3, s : s + 3] = body.mass * np.eye(3)
         out[s + 3 : s + 6, s + 3 : s + 6] = body.inertia
         out[s + 6 : s + 6 + n, s + 6 : s + 6 + n] = body.modes.mass
+    for i in model.elastic_bodies:
+        _set_elastic_block(model, i, out, _modal(model, i, q))
     return out
+
+
+def _modal(model: Multibody, i: int, q: np.ndarray | None) -> np.ndarray:
+    """Body ``i``'s modal coordinates in ``q`` (zeros for None)."""
+    if q is None:
+        return np.zeros(model.bodies[i].modes.n)
+    return np.asarray(q, dtype=float)[model.mode_coordinate_start[i] : model.mode_coordinate_start[i + 1]]
+
+
+def _set_elastic_block(model: Multibody, i: int, mass: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """Write flexible body ``i``'s M(xi) into its rotation and modes rows of ``mass``; return dM/dxi."""
+    elastic = model.bodies[i].elastic
+    assert elastic is not None
+    block, derivative = elastic.relative_mass(xi)
+    s = model.cart_start[i] + 3
+    mass[s : s + 3 + elastic.n, s : s + 3 + elastic.n] = block
+    return derivative
 
 
 @dataclass(frozen=True)
@@ -80,9 +104,31 @@ class Dynamics:
         st = kinematics(self.model, q, v)
         assert st.Bdot is not None
         b = st.B
-        mass = b.T @ self.total_mass @ b
-        nonlinear = b.T @ (self.total_mass @ st.Bdot + st.D() @ self.rigid_mass @ b)
+        if not self.model.elastic_bodies:
+            mass = b.T @ self.total_mass @ b
+            nonlinear = b.T @ (self.total_mass @ st.Bdot + st.D() @ self.rigid_mass @ b)
+            return DynamicsTerms(0.5 * (mass + mass.T), nonlinear, st)
+        rigid, quadratic = self._elastic_terms(q, b @ np.asarray(v, dtype=float))
+        total = rigid + self.added_mass
+        mass = b.T @ total @ b
+        nonlinear = b.T @ (total @ st.Bdot + (st.D() @ rigid + quadratic) @ b)
         return DynamicsTerms(0.5 * (mass + mass.T), nonlinear, st)
+
+    def _elastic_terms(self, q: np.ndarray, cartesian: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The body mass matrix at ``q`` and the flexible bodies' quadratic-velocity matrix beyond D M (Mdot and
+        the modes' -1/2 Y' dM/dxi rows), for the Cartesian velocities ``cartesian``."""
+        model = self.model
+        rigid = self.rigid_mass.copy()
+        quadratic = np.zeros_like(rigid)
+        for i in model.elastic_bodies:
+            derivative = _set_elastic_block(model, i, rigid, _modal(model, i, q))
+            n = derivative.shape[0]
+            s = model.cart_start[i] + 3
+            y = cartesian[s : s + 3 + n]
+            block = np.einsum("k,kab->ab", y[3:], derivative)
+            block[3:] -= 0.5 * np.einsum("a,kab->kb", y, derivative)
+            quadratic[s : s + 3 + n, s : s + 3 + n] = block
+        return rigid, quadratic
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, force: np.ndarray) -> np.ndarray:
         """Generalised accelerations v_dot = M*^-1 (B' F - N* v) for Cartesian forces ``force`` (n_cart,) (add
@@ -93,7 +139,10 @@ class Dynamics:
     def kinetic_energy(self, q: np.ndarray, v: np.ndarray) -> float:
         """T = 1/2 v' M* v [J]."""
         b = kinematics(self.model, q).B
-        return 0.5 * float(v @ b.T @ self.total_mass @ b @ v)
+        total = self.total_mass
+        if self.model.elastic_bodies:
+            total = body_mass_matrix(self.model, q) + self.added_mass
+        return 0.5 * float(v @ b.T @ total @ b @ v)
 
 
 def gravity_force(model: Multibody, g: float) -> np.ndarray:
@@ -107,7 +156,8 @@ def gravity_force(model: Multibody, g: float) -> np.ndarray:
 
 def structural_force(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> np.ndarray:
     """Cartesian load (n_cart,) of the modes' structural stiffness and damping: -K xi - C xi_dot on each mode's
-    row (zero elsewhere) [J], with xi the modal coordinates of ``q`` and xi_dot of ``v`` (None: no damping)."""
+    row (zero elsewhere) [J], with xi the modal coordinates of ``q`` and xi_dot of ``v`` (None: no damping); a
+    flexible body with a geometric tensor adds its geometric stiffening (``ElasticBody.elastic_force``)."""
     out = np.zeros(model.n_cart)
     if model.n_modes:
         xi = np.asarray(q, dtype=float)[model.mode_coordinates]
@@ -115,6 +165,24 @@ def structural_force(model: Multibody, q: np.ndarray, v: np.ndarray | None = Non
         if v is not None:
             load -= model.mode_damping @ np.asarray(v, dtype=float)[model.mode_velocities]
         out[model.mode_rows] = load
+    for i in model.elastic_bodies:  # the geometric stiffening of a flexible body's own axial strain
+        elastic = model.bodies[i].elastic
+        assert elastic is not None
+        if elastic.geometric is not None:
+            s = model.cart_start[i] + 6
+            out[s : s + elastic.n] += elastic.geometric_force(_modal(model, i, q))
+    return out
+
+
+def elastic_energy(model: Multibody, q: np.ndarray) -> float:
+    """Strain energy of the modes: 1/2 xi' K xi per body, a flexible body's cubic geometric term with it [J]."""
+    out = 0.0
+    for i, body in enumerate(model.bodies):
+        xi = _modal(model, i, q)
+        if body.elastic is not None:
+            out += body.elastic.elastic_energy(xi)
+        elif body.modes.n:
+            out += 0.5 * float(xi @ body.modes.stiffness @ xi)
     return out
 
 

@@ -97,9 +97,8 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
     nv = model.nv
     rotation = np.zeros((n, 3, 3))
     position = np.zeros((n, 3))
-    columns = np.zeros((6, nv))  # S
-    columns_dot = np.zeros((6, nv))  # dS/dt
-    chain = np.zeros((n, nv), dtype=bool)
+    jacobian = [np.zeros((6, nv))] * n  # S of each body: its spatial velocity is S v
+    jacobian_dot = [np.zeros((6, nv))] * n  # dS/dt
     displacement = [np.eye(4)] * n
     twist = [np.zeros(6)] * n  # spatial velocity of each body
     iq = iv = 0
@@ -109,8 +108,10 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
         par = model.parent[i]
         g = displacement[par] if par >= 0 else np.eye(4)
         vel = twist[par].copy() if par >= 0 else np.zeros(6)
-        if par >= 0:
-            chain[i] = chain[par]
+        columns = jacobian[par].copy() if par >= 0 else np.zeros((6, nv))
+        columns_dot = jacobian_dot[par].copy() if par >= 0 else np.zeros((6, nv))
+        if par >= 0 and model.bodies[par].elastic is not None:
+            g, vel = _elastic_attachment(model, par, joint.name, q, v, g, vel, columns, columns_dot)
         c0 = body.center_of_mass
         if joint.kind == "free":
             p = q[iq : iq + 3]
@@ -119,7 +120,6 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
             columns[:3, iv : iv + 3] = np.eye(3)
             columns[:3, iv + 3 : iv + 6] = hat(p) @ r
             columns[3:, iv + 3 : iv + 6] = r
-            chain[i, iv : iv + 6] = True
             if v is not None:
                 w_b = v[iv + 3 : iv + 6]
                 p_dot = v[iv : iv + 3]
@@ -134,14 +134,17 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
             for k, xi in enumerate(xis):
                 col = iv + k
                 columns[:, col] = adjoint(g) @ xi
-                chain[i, col] = True
                 if v is not None:
                     columns_dot[:, col] = twist_bracket(vel, columns[:, col])
                     vel = vel + columns[:, col] * v[col]
                 g = g @ se3_exp(xi * q[iq + k])
         displacement[i] = g
         twist[i] = vel
+        jacobian[i] = columns
+        jacobian_dot[i] = columns_dot
         rotation[i] = g[:3, :3]
+        if body.elastic is not None:
+            c0 = body.elastic.centre_of_mass(q[model.mode_coordinate_start[i] : model.mode_coordinate_start[i + 1]])
         position[i] = g[:3, :3] @ c0 + g[:3, 3]
         iq += joint.nq
         iv += joint.nv
@@ -152,25 +155,71 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
     omega_body = np.zeros((n, 3)) if v is not None else None
     for i in range(n):
         r0 = model.cart_start[i]
+        elastic = model.bodies[i].elastic
+        own = slice(model.mode_velocity_start[i], model.mode_velocity_start[i + 1])
         phi = np.zeros((6, 6))
         phi[:3, :3] = np.eye(3)
         phi[:3, 3:] = -hat(position[i])
         phi[3:, 3:] = rotation[i].T
-        s = np.where(chain[i], columns, 0.0)
+        s = jacobian[i]
         b_matrix[r0 : r0 + 6] = phi @ s
+        if elastic is not None:  # the centre of mass moves with the structure
+            coupling = elastic.invariants.translational_coupling / elastic.invariants.mass
+            b_matrix[r0 : r0 + 3, own] = rotation[i] @ coupling
         if v is not None:
             assert bdot is not None and omega_body is not None
             xdot = phi @ (s @ v)
+            if elastic is not None:
+                xdot[:3] += b_matrix[r0 : r0 + 3, own] @ v[own]
             omega_body[i] = xdot[3:]
             phi_dot = np.zeros((6, 6))
             phi_dot[:3, 3:] = -hat(xdot[:3])
             phi_dot[3:, 3:] = -hat(xdot[3:]) @ rotation[i].T
-            bdot[r0 : r0 + 6] = phi_dot @ s + phi @ np.where(chain[i], columns_dot, 0.0)
+            bdot[r0 : r0 + 6] = phi_dot @ s + phi @ jacobian_dot[i]
+            if elastic is not None:
+                bdot[r0 : r0 + 3, own] = rotation[i] @ hat(xdot[3:]) @ coupling
     # generalised modes: the rate of the mode's own coordinate (B = identity on its column, Bdot = 0)
     b_matrix[model.mode_rows, model.mode_velocities] = 1.0
     return KinematicState(
         rotation, position, b_matrix, bdot, omega_body, model.cart_start, q[model.mode_coordinates].copy()
     )
+
+
+def _elastic_attachment(
+    model: Multibody,
+    parent: int,
+    name: str,
+    q: np.ndarray,
+    v: np.ndarray | None,
+    g: np.ndarray,
+    vel: np.ndarray,
+    columns: np.ndarray,
+    columns_dot: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Carry a child's joint on its flexible parent's attachment ``name``: the parent's modal coordinates act as
+    joints with the attachment's twists (``wecss.multibody._elastic``), filling their columns of S and dS/dt in place.
+    Returns the displacement and spatial velocity at the attachment. A joint with no attachment of that name rides on
+    the parent's floating frame (its clamp)."""
+    elastic = model.bodies[parent].elastic
+    assert elastic is not None
+    if name not in elastic.attachments:
+        return g, vel
+    first_v = model.mode_velocity_start[parent]
+    first_q = model.mode_coordinate_start[parent]
+    twists = elastic.attachments[name].twists
+    n = len(twists)
+    cols = np.zeros((n, 6))
+    for k, psi in enumerate(twists):
+        cols[k] = adjoint(g) @ psi
+        g = g @ se3_exp(psi * q[first_q + k])
+    columns[:, first_v : first_v + n] = cols.T
+    if v is not None:
+        # the spatial velocity before each column: the parent's plus the columns before it
+        rates = cols * v[first_v : first_v + n, None]
+        before = vel + np.concatenate([np.zeros((1, 6)), np.cumsum(rates, axis=0)[:-1]])
+        columns_dot[:, first_v : first_v + n] = twist_bracket(before, cols).T
+        vel = vel + rates.sum(axis=0)
+    return g, vel
 
 
 def integrate(model: Multibody, q: np.ndarray, dv: np.ndarray) -> np.ndarray:

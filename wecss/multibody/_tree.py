@@ -22,6 +22,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from ._elastic import ElasticBody, check_elastic_body
 from ._modes import NO_MODES, GeneralisedModes
 
 JointKind = Literal["fixed", "planar", "free", "revolute", "prismatic", "weld"]
@@ -56,15 +57,19 @@ class Body:
     hydro_body : str or None
         Name of the body in the hydrodynamic database that acts on this body (None: no hydrodynamics).
     modes : GeneralisedModes, or its device-spec form (see ``GeneralisedModes.from_spec``), optional
-        The body's generalised modes beyond its six rigid-body DOFs (default none: a rigid body). Inertial
-        coupling between the rigid motion and the modes is neglected (a later issue adds the floating frame's
-        invariants); see ``wecss.multibody._modes``.
+        The body's generalised modes beyond its six rigid-body DOFs (default none: a rigid body), with no inertial
+        coupling to the rigid motion (see ``wecss.multibody._modes``).
+    elastic : ElasticBody, optional
+        A flexible body's floating-frame model (``wecss.multibody._elastic``): its modal coordinates are the
+        body's modes, inertially coupled to its rigid motion through the invariants, and its attachments carry
+        child bodies. Its invariants must hold the body's mass, centre of mass and inertia. Not with ``modes``.
 
     Raises
     ------
     ValueError
         On a non-positive mass, a non-symmetric or indefinite inertia, principal moments that break the triangle
-        inequality (one larger than the sum of the other two), a malformed vector, or bad modes.
+        inequality (one larger than the sum of the other two), a malformed vector, bad modes, or an elastic model
+        that disagrees with the body or comes with ``modes``.
     """
 
     name: str
@@ -73,6 +78,7 @@ class Body:
     center_of_mass: np.ndarray
     hydro_body: str | None = None
     modes: GeneralisedModes = NO_MODES
+    elastic: ElasticBody | None = None
 
     def __post_init__(self) -> None:
         if not self.name or "__" in self.name:
@@ -101,7 +107,15 @@ class Body:
         object.__setattr__(self, "inertia", inertia)
         object.__setattr__(self, "center_of_mass", _vector(self.center_of_mass, f"body {self.name!r} center_of_mass"))
         modes: Any = self.modes
-        if not isinstance(modes, GeneralisedModes) or modes.body != self.name:
+        if self.elastic is not None:
+            if modes is not NO_MODES:
+                raise ValueError(
+                    f"body {self.name!r}: give its modes or its elastic model, not both (an elastic body's modes are "
+                    "its modal coordinates)"
+                )
+            check_elastic_body(self.name, self.mass, inertia, self.center_of_mass, self.elastic)
+            modes = self.elastic.modes(self.name)
+        elif not isinstance(modes, GeneralisedModes) or modes.body != self.name:
             modes = GeneralisedModes.from_spec(self.name, modes)
             if modes.n:
                 modes = GeneralisedModes(modes.names, modes.mass, modes.stiffness, modes.damping, self.name)
@@ -351,6 +365,11 @@ class Multibody:
         return tuple(f"{b.name}__{d}" for b in self.bodies for d in (*rigid, *b.modes.names))
 
     # --- generalised modes -------------------------------------------------------------------------
+    @cached_property
+    def elastic_bodies(self) -> tuple[int, ...]:
+        """Indices of the bodies with an elastic model (``Body.elastic``)."""
+        return tuple(i for i, b in enumerate(self.bodies) if b.elastic is not None)
+
     @property
     def n_modes(self) -> int:
         """Number of generalised modes of all bodies."""
@@ -384,6 +403,19 @@ class Multibody:
         """Index in the generalised coordinates of each mode (n_modes,): after the joints' coordinates."""
         first = sum(j.nq for j in self.joints)
         return np.arange(first, first + self.n_modes, dtype=np.int64)
+
+    @cached_property
+    def mode_velocity_start(self) -> tuple[int, ...]:
+        """Index in the generalised velocities of each body's first mode, and one past the last body's (n_body + 1):
+        body i's modes are ``mode_velocity_start[i]:mode_velocity_start[i + 1]``."""
+        first = sum(j.nv for j in self.joints)
+        return tuple(int(x) for x in first + np.concatenate([[0], np.cumsum([b.modes.n for b in self.bodies])]))
+
+    @cached_property
+    def mode_coordinate_start(self) -> tuple[int, ...]:
+        """As :attr:`mode_velocity_start`, in the generalised coordinates."""
+        first = sum(j.nq for j in self.joints)
+        return tuple(int(x) for x in first + np.concatenate([[0], np.cumsum([b.modes.n for b in self.bodies])]))
 
     def _mode_blocks(self, field: str) -> np.ndarray:
         out = np.zeros((self.n_modes, self.n_modes))

@@ -1,6 +1,7 @@
 """The structural model of a device's members: 3D beam finite elements (Euler-Bernoulli or Timoshenko, consistent
 mass, geometric stiffness), frames meshed from members, static and modal solutions, Craig-Bampton reduction with
-inertia-relief vectors, the floating-frame inertia invariants and stress modes."""
+inertia-relief vectors, the floating-frame inertia invariants, the geometric stiffness of a basis's own axial strain
+and stress modes."""
 
 from ._build import LumpedMass as LumpedMass
 from ._build import MemberLine as MemberLine
@@ -14,6 +15,8 @@ from ._frame import RIGID_LOADS as RIGID_LOADS
 from ._frame import Frame as Frame
 from ._frame import PointMass as PointMass
 from ._frame import offset_map as offset_map
+from ._geometric import axial_forces as axial_forces
+from ._geometric import axial_geometric_stiffness as axial_geometric_stiffness
 from ._invariants import Invariants as Invariants
 from ._invariants import invariants as invariants
 from ._material import MATERIALS as MATERIALS
