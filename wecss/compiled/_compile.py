@@ -397,6 +397,12 @@ def _device_parts(
     its statics, equilibrium and static stiffness (cached, keyed also by the stamps of the files read, ``sources``;
     the arrays are read-only)."""
     device = _device(name)
+    if device.elastic_bodies:
+        raise SceneError(
+            f"device {device.name!r}: bodies {list(device.elastic_bodies)} have flexible.dynamics = 'elastic'; the "
+            "time-domain runs and the linear model do not carry elastic modes yet (the equations are in "
+            "wecss.multibody: Device.elastic_model()); use dynamics = 'frozen' to run the device rigid"
+        )
     try:
         database = device.hydro(hydro)
     except FileNotFoundError as err:

@@ -17,6 +17,7 @@ from ..hydro import HydroData, is_wecss_database, read_bemio, read_capytaine, re
 from ..hydro import load as load_hydro
 from ..multibody import (
     ActuatorPTO,
+    Body,
     BodyDrag,
     Dynamics,
     HydroCoupling,
@@ -192,6 +193,43 @@ class Device:
             If the body is not flexible.
         """
         return flexible_body(self.model, self.ptos, self.members, self.masses, body, self._flexible_spec(body))
+
+    @property
+    def elastic_bodies(self) -> tuple[str, ...]:
+        """The flexible bodies whose modes move in the equations of motion (``flexible.dynamics = "elastic"``)."""
+        return tuple(name for name, f in self.flexible.items() if f.dynamics == "elastic")
+
+    def elastic_model(self) -> Multibody:
+        """The device's tree with its elastic bodies (``flexible.dynamics = "elastic"``) in a floating frame: each
+        such body takes its structural model's mass, centre of mass and inertia (the structure carries the body's
+        mass, to ``MASS_TOLERANCE``) and its modal coordinates (``<body>__flex1``, ...) join the generalised
+        coordinates after the joints'; its children ride on its nodes (``FlexibleBody.elastic_body``). Without
+        elastic bodies it is :attr:`model` itself.
+
+        Raises
+        ------
+        ValueError
+            If an elastic body is wetted (it has hydrodynamics or a mesh): floats stay rigid children of flexible
+            members; the wetted modes of a flexible body are not modelled.
+        """
+        if not self.elastic_bodies:
+            return self.model
+        bodies = list(self.model.bodies)
+        for name in self.elastic_bodies:
+            k = self.model.body_names.index(name)
+            body = bodies[k]
+            meshed = [m.body for m in self.meshes]
+            if body.hydro_body is not None or name in meshed:
+                raise ValueError(
+                    f"device {self.name!r}: body {name!r} has flexible.dynamics = 'elastic' and is wetted (hydro body "
+                    f"{body.hydro_body!r}{', a mesh' if name in meshed else ''}); the wetted modes of a flexible body "
+                    "are not modelled: make the float a rigid child of the flexible member, or use dynamics = "
+                    "'frozen'"
+                )
+            elastic = self.flexible_body(name).elastic_body()
+            inv = elastic.invariants
+            bodies[k] = Body(name, inv.mass, inv.inertia, inv.origin, None, elastic=elastic)
+        return Multibody(bodies, self.model.joints)
 
     def structural_modes(self, **options: Any) -> xr.Dataset:
         """Natural modes of the device with its flexible bodies, in water or in air:

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from ..multibody import ActuatorPTO, GeneralisedModes, JointPTO, Multibody
+from ..multibody import ActuatorPTO, ElasticBody, GeneralisedModes, JointPTO, Multibody
 from ..structure import (
     THEORIES,
     Frame,
@@ -43,8 +43,15 @@ from ..structure import (
 )
 from ._members import Member
 
-FLEXIBLE_KEYS = ("modes", "damping_ratio", "elements", "theory", "clamp", "inertia_relief", "centrifugal")
+FLEXIBLE_KEYS = (
+    "modes", "damping_ratio", "elements", "theory", "clamp", "inertia_relief", "centrifugal", "dynamics",
+    "geometric_stiffness",
+)  # fmt: skip
 """Keys of a body's ``flexible`` table (all optional)."""
+DYNAMICS = ("frozen", "elastic")
+"""What a flexible body's modes do in the device's equations of motion: ``frozen`` (the body moves rigidly with the
+spec's mass properties; the structural model gives stresses by the free-body cut and the modal analysis) or
+``elastic`` (its modal coordinates join the generalised coordinates: ``Device.elastic_model``)."""
 MASS_KEYS = ("name", "body", "point", "mass", "inertia")
 """Keys of a ``[[masses]]`` entry (``inertia`` optional)."""
 MASS_TOLERANCE = 1e-3
@@ -76,6 +83,11 @@ class Flexible:
         Where the body is held [m] (default: its parent joint's point).
     inertia_relief, centrifugal : bool
         The inertia-relief vectors (default True) and the angular-velocity ones (default False).
+    dynamics : str
+        One of :data:`DYNAMICS` (default ``"frozen"``).
+    geometric_stiffness : bool
+        With ``dynamics = "elastic"``, the geometric stiffening of the basis's own axial strain (default True;
+        ``wecss.structure.axial_geometric_stiffness``).
     """
 
     modes: int = 6
@@ -85,6 +97,8 @@ class Flexible:
     clamp: np.ndarray | None = None
     inertia_relief: bool = True
     centrifugal: bool = False
+    dynamics: str = "frozen"
+    geometric_stiffness: bool = True
 
     @classmethod
     def from_spec(cls, where: str, value: Any) -> Flexible:
@@ -117,12 +131,15 @@ class Flexible:
             if clamp is None or clamp.shape != (3,) or not np.all(np.isfinite(clamp)):
                 raise ValueError(f"{where}: flexible.clamp must be a point [x, y, z] [m]; got {value['clamp']!r}")
         flags = {}
-        for key, default in (("inertia_relief", True), ("centrifugal", False)):
+        for key, default in (("inertia_relief", True), ("centrifugal", False), ("geometric_stiffness", True)):
             flag = value.get(key, default)
             if not isinstance(flag, bool):
                 raise ValueError(f"{where}: flexible.{key} must be true or false; got {flag!r}")
             flags[key] = flag
-        return cls(modes, float(ratio), elements, theory, clamp, **flags)
+        dynamics = value.get("dynamics", "frozen")
+        if dynamics not in DYNAMICS:
+            raise ValueError(f"{where}: flexible.dynamics {dynamics!r}; accepted: {list(DYNAMICS)}")
+        return cls(modes, float(ratio), elements, theory, clamp, dynamics=dynamics, **flags)
 
 
 @dataclass(frozen=True, eq=False)
@@ -323,6 +340,16 @@ class FlexibleBody:
     def mode_names(self) -> tuple[str, ...]:
         """``flex1``, ``flex2``, ... one per reduced coordinate."""
         return tuple(f"flex{k + 1}" for k in range(self.basis.n))
+
+    def elastic_body(self) -> ElasticBody:
+        """The body's floating-frame model for the equations of motion (``wecss.multibody.ElasticBody``): its
+        invariants about the structural model's own centre of mass (the structure carries the body's mass), an
+        attachment per interface (a child joint's under the joint's name, a PTO end's under ``pto:<name>``) and,
+        with ``flexible.geometric_stiffness``, the geometric tensor of the basis's own axial strain."""
+        attachments = {name.removeprefix("joint:"): name for name in self.interfaces}
+        return ElasticBody.from_basis(
+            self.basis, attachments, geometric=self.flexible.geometric_stiffness, names=self.mode_names
+        )
 
     def generalised_modes(self) -> GeneralisedModes:
         """The reduced coordinates as a body's generalised modes: unit mass, stiffness omega^2, damping

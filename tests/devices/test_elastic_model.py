@@ -1,0 +1,96 @@
+"""A device's flexible body in the equations of motion (``flexible.dynamics = "elastic"``): the elastic model of the
+NOTC arm (its mass from the structure, its children on its nodes), the refusals (a wetted elastic body, the
+time-domain runs that do not carry elastic modes yet, bad spec values), and the arm's static sag under its own
+weight in the multibody equations against the finite-element solution of the same structure."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import wecss
+from wecss.devices import Flexible
+from wecss.devices._flexible import MASS_TOLERANCE
+from wecss.multibody import Dynamics, gravity_force, structural_force
+from wecss.scene import SceneError
+from wecss.structure import static_response
+
+
+def _elastic_notc(**changes: object) -> wecss.devices.Device:
+    device = wecss.devices.load("notc-10kw")
+    flexible = dataclasses.replace(device.flexible["arm"], dynamics="elastic", **changes)
+    return dataclasses.replace(device, flexible={"arm": flexible})
+
+
+def test_the_elastic_model_of_the_notc_arm() -> None:
+    device = _elastic_notc()
+    rigid, model = device.model, device.elastic_model()
+    arm = model.body("arm")
+    assert arm.elastic is not None
+    n = arm.elastic.n
+    assert model.nv == rigid.nv + n and model.velocity_names[: rigid.nv] == rigid.velocity_names
+    assert model.velocity_names[rigid.nv :] == tuple(f"arm__flex{k + 1}" for k in range(n))
+    assert arm.mass == pytest.approx(rigid.body("arm").mass, rel=MASS_TOLERANCE)
+    assert sorted(arm.elastic.attachments) == ["pto:cylinder", "tip"]
+    np.testing.assert_allclose(arm.elastic.attachments["tip"].point, rigid.joint("tip").point)
+    assert arm.elastic.geometric is not None
+    assert _elastic_notc(geometric_stiffness=False).elastic_model().body("arm").elastic.geometric is None  # type: ignore[union-attr]
+    frozen = wecss.devices.load("notc-10kw")
+    assert frozen.elastic_model() is frozen.model
+
+
+def test_a_wetted_elastic_body_is_refused() -> None:
+    device = wecss.devices.load("notc-10kw")
+    float_body = device.model.body("floater")
+    assert float_body.hydro_body is not None
+    wet = dataclasses.replace(device, flexible={"floater": Flexible(dynamics="elastic")})
+    with pytest.raises(ValueError, match=r"body .floater. has flexible.dynamics = 'elastic' and is wetted"):
+        wet.elastic_model()
+
+
+def test_spec_values_of_the_dynamics_are_checked() -> None:
+    assert Flexible.from_spec("here", {"dynamics": "elastic"}).dynamics == "elastic"
+    with pytest.raises(ValueError, match=r"flexible.dynamics 'soft'; accepted: \['frozen', 'elastic'\]"):
+        Flexible.from_spec("here", {"dynamics": "soft"})
+    with pytest.raises(ValueError, match=r"flexible\.geometric_stiffness must be true or false"):
+        Flexible.from_spec("here", {"geometric_stiffness": 1})
+
+
+def test_a_run_of_an_elastic_device_is_refused_with_what_to_do(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    from wecss.compiled import _compile
+
+    device = _elastic_notc()
+    monkeypatch.setattr(_compile, "_device", lambda name: device)
+    with pytest.raises(SceneError, match=r"bodies \['arm'\] have flexible.dynamics = 'elastic'.*dynamics = 'frozen'"):
+        _compile._device_parts("elastic notc, for this test", None, ())
+
+
+def test_the_arm_sags_under_its_weight_as_the_finite_elements_say() -> None:
+    """The pivot and the float's hinge held, the NOTC arm's elastic coordinates settle under the arm's own weight
+    where the full finite-element model of the same structure, clamped at the pivot and held at the hinge, puts
+    them (the basis holds the weight's static response; geometric stiffening off: a linear check)."""
+    device = _elastic_notc(geometric_stiffness=False)
+    model = device.elastic_model()
+    arm = model.body("arm")
+    assert arm.elastic is not None
+    dyn, g = Dynamics(model), 9.81
+    q, v = model.neutral_configuration(), np.zeros(model.nv)
+    modes = slice(model.mode_velocity_start[1], model.mode_velocity_start[2])
+    assert model.body_names[1] == "arm"
+    terms = dyn.terms(q, v)
+    load = terms.state.B.T @ (gravity_force(model, g) + structural_force(model, q))
+    # the tip is held: the six coordinates of its constraint modes are the tip's displacement, zero; solve the rest
+    tip = arm.elastic.attachments["tip"].shapes
+    free = np.linalg.svd(tip)[2][6:].T  # modal directions that leave the tip in place
+    stiffness = arm.elastic.invariants.modal_stiffness
+    xi = free @ np.linalg.solve(free.T @ stiffness @ free, free.T @ load[modes])
+    # the finite elements: weight of the arm, clamped at the pivot and held at the hinge
+    flexible = device.flexible_body("arm")
+    frame = flexible.frame
+    held = np.concatenate([frame.support("clamp"), frame.support("joint:tip")])
+    weight = frame.rigid_motion_loads(np.zeros(3))[:, 2] * -g
+    u = static_response(frame.stiffness, weight, held)
+    phi = flexible.basis.basis
+    np.testing.assert_allclose(phi @ xi, u, rtol=0, atol=1e-9 * np.abs(u).max())
