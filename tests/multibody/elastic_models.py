@@ -6,22 +6,28 @@ from __future__ import annotations
 import numpy as np
 
 from wecss.multibody import Body, ElasticBody, Joint, Multibody
-from wecss.structure import MATERIALS, LumpedMass, Material, MemberLine, Section, build_frame, craig_bampton
+from wecss.structure import MATERIALS, Frame, LumpedMass, Material, MemberLine, Section, build_frame, craig_bampton
 
 A, B, C = np.array([0.0, 0.0, 0.0]), np.array([1.5, 0.0, 0.0]), np.array([1.5, 0.8, 0.6])
 LUG = np.array([0.9, 0.0, 0.0])
 
 
-def l_arm(n_modes: int = 3, *, geometric: bool = True, soft: bool = False) -> ElasticBody:
-    """Two members (a tube A-B, a box B-C) and a lumped mass, held at A; a float's hinge at C and a lug at LUG.
-    ``soft``: a material 1000 times more compliant than steel (slow modes, for time integration)."""
+def l_arm_frame(*, soft: bool = False) -> Frame:
+    """Two members (a tube A-B, a box B-C) and a lumped mass, with the points ``root`` (A), ``pto`` (LUG) and
+    ``tip`` (C). ``soft``: a material 1000 times more compliant than steel (slow modes, for time integration)."""
     steel = MATERIALS["S355"] if not soft else Material("soft", 2.1e8, 0.8e8, 7850.0)
     members = [
         MemberLine("a", A, B, Section.tube(0.12, 0.006), steel, 20.0),
         MemberLine("b", B, C, Section.box(0.08, 0.12, 0.005), steel),
     ]
     mass = LumpedMass("lug", np.array([0.9, 0.05, -0.04]), 30.0, np.diag([0.2, 0.3, 0.4]))
-    frame = build_frame(members, elements=4, points={"root": A, "pto": LUG, "tip": C}, masses=[mass])
+    return build_frame(members, elements=4, points={"root": A, "pto": LUG, "tip": C}, masses=[mass])
+
+
+def l_arm(n_modes: int = 3, *, geometric: bool = True, soft: bool = False) -> ElasticBody:
+    """The L frame (:func:`l_arm_frame`) held at A, reduced with ``n_modes`` normal modes; a float's hinge at C and
+    a lug at LUG."""
+    frame = l_arm_frame(soft=soft)
     basis = craig_bampton(frame, "root", {"pto": "force", "tip": "joint"}, n_modes=n_modes, centrifugal=True)
     return ElasticBody.from_basis(basis, {"float_hinge": "tip", "lug_weld": "pto"}, geometric=geometric)
 
