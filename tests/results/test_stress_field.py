@@ -7,9 +7,18 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+import xarray as xr
 
 from wecss.devices import load
-from wecss.results import StressFieldRecorder, life_years, miner_damage, plot_life_map, rainflow_cycles
+from wecss.results import (
+    StressFieldRecorder,
+    life_years,
+    miner_damage,
+    open_result,
+    plot_life_map,
+    rainflow_cycles,
+    save,
+)
 from wecss.structure import default_points, stress_modes
 
 pytest.importorskip("rainflow")
@@ -123,6 +132,17 @@ def test_life_map_plots_on_the_frame_and_on_member_axes(arm, tmp_path):
         plot_life_map(ds, plane="xw")
     with pytest.raises(ValueError, match="not a stress field"):
         plot_life_map(ds.drop_vars("life_years"))
+
+
+def test_the_field_round_trips_through_netcdf(arm, tmp_path):
+    q, q_ddot, rigid = synthetic_run(arm.stresses, 300, 0.05, seed=5)
+    recorder = StressFieldRecorder(arm.stresses, 0.05, keep=["arm.lug_top"], every=2)
+    recorder.update(q, q_ddot, rigid)
+    ds = recorder.result()
+    save(ds, tmp_path / "field.nc")
+    back = open_result(tmp_path / "field.nc")
+    xr.testing.assert_identical(back, ds)
+    plt.close(plot_life_map(back, tmp_path / "field.png", frame=arm.frame))
 
 
 def test_points_without_distinct_names_get_their_place_in_the_name(arm):
