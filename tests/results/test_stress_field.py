@@ -142,7 +142,6 @@ def test_the_field_round_trips_through_netcdf(arm, tmp_path):
     save(ds, tmp_path / "field.nc")
     back = open_result(tmp_path / "field.nc")
     xr.testing.assert_identical(back, ds)
-    plt.close(plot_life_map(back, tmp_path / "field.png", frame=arm.frame))
 
 
 def test_points_without_distinct_names_get_their_place_in_the_name(arm):
