@@ -71,6 +71,29 @@ VARIABLE_ATTRS: Mapping[str, Mapping[str, str]] = {
         "long_name": "complex amplitude of the undisturbed wave elevation at the origin, Re[X exp(+i omega t)]",
         "units": "m",
     },
+    # stress fields and fatigue maps of a run (wecss.results.StressFieldRecorder)
+    "member": {"long_name": "member the stress point lies on"},
+    "station": {"long_name": "distance of the stress point's section from its member's start", "units": "m"},
+    "y": {"long_name": "stress point's y on its section (member axes)", "units": "m"},
+    "z": {"long_name": "stress point's z on its section (member axes)", "units": "m"},
+    "scf": {"long_name": "stress concentration factor at the point (in its stresses)", "units": "1"},
+    "damage": {
+        "long_name": "Palmgren-Miner sum of the record's rainflow cycles (residue as half cycles)",
+        "units": "1",
+    },
+    "life_years": {
+        "long_name": "fatigue life: the record's duration over its Miner sum (paper 003, Eq. 55), 365-day years",
+        "units": "year",
+    },
+    "signed_von_mises_max": {"long_name": "largest signed von Mises stress of the record", "units": "Pa"},
+    "signed_von_mises_min": {"long_name": "smallest signed von Mises stress of the record", "units": "Pa"},
+    "von_mises_rms": {"long_name": "root mean square of the von Mises stress over the record", "units": "Pa"},
+    "series_point": {"long_name": "stress point whose time series is kept"},
+    "series_time": {"long_name": "time from the record's first sample of the kept series", "units": "s"},
+    "signed_von_mises_series": {
+        "long_name": "signed von Mises stress at the kept points (the sign of the largest principal stress, Eq. 53)",
+        "units": "Pa",
+    },
     **variable_attrs(),
 }
 """Attributes by variable name: the hydrodynamic databases' here, a run's from the output table

@@ -95,14 +95,16 @@ class StressModes:
         self, q: np.ndarray, q_ddot: np.ndarray | None = None, rigid: np.ndarray | None = None
     ) -> dict[str, np.ndarray]:
         """``normal``, ``shear``, ``von_mises`` and ``signed_von_mises`` (..., n_point) [Pa] at the points."""
-        normal = np.einsum("pn,...n->...p", self.normal, q)
-        shear = np.einsum("pn,...n->...p", self.shear, q)
+        # matrix products (BLAS): eight times einsum's loops on (2000, 21) chunks of 500 points
+        q = np.asarray(q, dtype=float)
+        normal = q @ self.normal.T
+        shear = q @ self.shear.T
         if q_ddot is not None:
-            normal = normal + np.einsum("pn,...n->...p", self.normal_acceleration, q_ddot)
-            shear = shear + np.einsum("pn,...n->...p", self.shear_acceleration, q_ddot)
+            normal = normal + np.asarray(q_ddot, dtype=float) @ self.normal_acceleration.T
+            shear = shear + np.asarray(q_ddot, dtype=float) @ self.shear_acceleration.T
         if rigid is not None:
-            normal = normal + np.einsum("pr,...r->...p", self.normal_rigid, rigid)
-            shear = shear + np.einsum("pr,...r->...p", self.shear_rigid, rigid)
+            normal = normal + np.asarray(rigid, dtype=float) @ self.normal_rigid.T
+            shear = shear + np.asarray(rigid, dtype=float) @ self.shear_rigid.T
         vm, signed = von_mises(normal, shear)
         return {"normal": normal, "shear": shear, "von_mises": vm, "signed_von_mises": signed}
 
