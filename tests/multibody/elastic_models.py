@@ -29,7 +29,8 @@ def l_arm(n_modes: int = 3, *, geometric: bool = True, soft: bool = False) -> El
     a lug at LUG."""
     frame = l_arm_frame(soft=soft)
     basis = craig_bampton(frame, "root", {"pto": "force", "tip": "joint"}, n_modes=n_modes, centrifugal=True)
-    return ElasticBody.from_basis(basis, {"float_hinge": "tip", "lug_weld": "pto"}, geometric=geometric)
+    attachments = {"float_hinge": "tip", "lug_weld": "pto", "pto:cylinder": "pto"}
+    return ElasticBody.from_basis(basis, attachments, geometric=geometric)
 
 
 def arm_device(base: str = "free", elastic: ElasticBody | None = None) -> Multibody:

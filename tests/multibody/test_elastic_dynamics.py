@@ -275,3 +275,27 @@ def _l_arm_basis():  # type: ignore[no-untyped-def]
     from .elastic_models import l_arm_frame
 
     return craig_bampton(l_arm_frame(), "root", {"pto": "force", "tip": "joint"}, n_modes=3, centrifugal=True)
+
+
+def test_an_actuator_end_rides_on_its_node() -> None:
+    """An actuator from the hull to the arm's node at LUG (attachment ``pto:cylinder``): its transmission g is the
+    derivative of its length along the motion (central differences with a Richardson step), the arm's modes
+    included; an end on a flexible body without its attachment is refused."""
+    from wecss.multibody import ActuatorPTO
+
+    model = arm_device("free")
+    pto = ActuatorPTO("cylinder", "hull", np.array([-0.3, 0.0, 0.4]), "arm", LUG)
+    q, v = _random_state(model, 21, size=0.2)
+    _, transmission = pto.stroke(model, q, kinematics(model, q))
+
+    def at(h: float) -> float:
+        moved = integrate(model, q, h * v)
+        return pto.stroke(model, moved, kinematics(model, moved))[0]
+
+    d1 = (at(1e-4) - at(-1e-4)) / 2e-4
+    d2 = (at(5e-5) - at(-5e-5)) / 1e-4
+    rate = (4 * d2 - d1) / 3
+    assert transmission @ v == pytest.approx(rate, rel=1e-9)
+    assert np.abs(transmission[model.mode_velocity_start[1] : model.mode_velocity_start[2]]).max() > 0
+    with pytest.raises(ValueError, match="needs the body's attachment 'pto:other'"):
+        ActuatorPTO("other", "hull", np.array([-0.3, 0.0, 0.4]), "arm", LUG).stroke(model, q, kinematics(model, q))

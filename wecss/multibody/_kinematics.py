@@ -48,6 +48,9 @@ class KinematicState:
         First Cartesian row of each body (``Multibody.cart_start``).
     modal : ndarray (n_modes,)
         The generalised modes' coordinates [1] (``Multibody.mode_names``).
+    attachments : mapping of (body index, name) to (ndarray (3,), ndarray (3, nv))
+        Per attachment of a flexible body (``ElasticBody.attachments``): where its point is (world) [m] and its
+        velocity Jacobian (its velocity is J v): the point carried by the structure (:meth:`point`).
     """
 
     rotation: np.ndarray
@@ -57,6 +60,21 @@ class KinematicState:
     angular_velocity: np.ndarray | None = None
     cart_start: tuple[int, ...] = ()
     modal: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    attachments: dict[tuple[int, str], tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+
+    def point(self, body: int, name: str) -> tuple[np.ndarray, np.ndarray]:
+        """World position (3,) [m] and velocity Jacobian (3, nv) (its velocity is J v) of the attachment ``name`` of
+        the flexible body ``body`` (its reference point carried by the structure).
+
+        Raises
+        ------
+        KeyError
+            If the body has no such attachment.
+        """
+        if (body, name) not in self.attachments:
+            known = sorted(n for b, n in self.attachments if b == body)
+            raise KeyError(f"body {body} has no attachment {name!r}; attachments: {known}")
+        return self.attachments[(body, name)]
 
     def D(self) -> np.ndarray:
         """Block-diagonal angular-velocity matrix of the MFM (Eq. 44): diag(0, hat(w_B)) per body, zero on the rows
@@ -149,6 +167,16 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
         iq += joint.nq
         iv += joint.nv
 
+    points: dict[tuple[int, str], tuple[np.ndarray, np.ndarray]] = {}
+    for i in model.elastic_bodies:  # where each attachment of a flexible body is, and its velocity Jacobian
+        elastic = model.bodies[i].elastic
+        assert elastic is not None
+        for name, attachment in elastic.attachments.items():
+            columns = jacobian[i].copy()
+            g, _ = _elastic_attachment(model, i, name, q, None, displacement[i], twist[i], columns, columns)
+            where = g[:3, :3] @ attachment.point + g[:3, 3]
+            points[(i, name)] = (where, columns[:3] - hat(where) @ columns[3:])
+
     n_cart = model.n_cart
     b_matrix = np.zeros((n_cart, nv))
     bdot = np.zeros((n_cart, nv)) if v is not None else None
@@ -181,7 +209,7 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
     # generalised modes: the rate of the mode's own coordinate (B = identity on its column, Bdot = 0)
     b_matrix[model.mode_rows, model.mode_velocities] = 1.0
     return KinematicState(
-        rotation, position, b_matrix, bdot, omega_body, model.cart_start, q[model.mode_coordinates].copy()
+        rotation, position, b_matrix, bdot, omega_body, model.cart_start, q[model.mode_coordinates].copy(), points
     )
 
 

@@ -152,6 +152,20 @@ class ActuatorPTO:
         if body is None:
             return point, np.zeros((3, model.nv))
         i = model.body_names.index(body)
+        elastic = model.bodies[i].elastic
+        if elastic is not None:  # the end rides on its node: the attachment pto:<name> of the flexible body
+            name = f"pto:{self.name}"
+            if name not in elastic.attachments:
+                raise ValueError(
+                    f"PTO {self.name!r}: its end on the flexible body {body!r} needs the body's attachment {name!r} "
+                    f"(a point of its structure); attachments: {sorted(elastic.attachments)}"
+                )
+            if not np.allclose(elastic.attachments[name].point, point, rtol=0, atol=1e-9):
+                raise ValueError(
+                    f"PTO {self.name!r}: its end {np.round(point, 9).tolist()} m on {body!r} is not where the "
+                    f"attachment {name!r} is, {np.round(elastic.attachments[name].point, 9).tolist()} m"
+                )
+            return state.point(i, name)
         r_body = point - model.bodies[i].center_of_mass  # body axes are the world axes at the reference pose
         position = state.position[i] + state.rotation[i] @ r_body
         s = model.cart_start[i]
