@@ -94,3 +94,37 @@ def test_the_arm_sags_under_its_weight_as_the_finite_elements_say() -> None:
     u = static_response(frame.stiffness, weight, held)
     phi = flexible.basis.basis
     np.testing.assert_allclose(phi @ xi, u, rtol=0, atol=1e-9 * np.abs(u).max())
+
+
+def test_the_linearised_elastic_model_has_the_modal_analysis_frequencies() -> None:
+    """The NOTC device in air (no gravity), its arm elastic: the natural frequencies of the multibody equations
+    linearised about the reference configuration by central differences (its mass matrix M*, the stiffness of the
+    structure and of the cylinder, whose end rides on the arm's node) equal those of the device's modal analysis
+    (``structural_modes``, a linear assembly of its own, issue 27) with the same reduced basis: two derivations."""
+    from scipy.linalg import eigh
+
+    from wecss.multibody import integrate, kinematics
+
+    device = _elastic_notc(geometric_stiffness=False)
+    model = device.elastic_model()
+    q0, v0 = model.neutral_configuration(), np.zeros(model.nv)
+
+    def force(q: np.ndarray) -> np.ndarray:
+        state = kinematics(model, q)
+        out = state.B.T @ structural_force(model, q)
+        for pto in device.ptos:
+            stroke, transmission = pto.stroke(model, q, state)
+            out += transmission * (-pto.stiffness * (stroke - pto.rest))
+        return out
+
+    eps = 1e-7
+    stiffness = -np.array(
+        [(force(integrate(model, q0, eps * e)) - force(integrate(model, q0, -eps * e))) / (2 * eps)
+         for e in np.eye(model.nv)]
+    ).T  # fmt: skip
+    squares = eigh(0.5 * (stiffness + stiffness.T), Dynamics(model).terms(q0, v0).mass, eigvals_only=True)
+    ours = np.sqrt(np.clip(squares[:8], 0.0, None)) / (2 * np.pi)
+    theirs = device.structural_modes(water=False, model="reduced", n_modes=8)["frequency"].values
+    print(f"NOTC in air, elastic model against the modal analysis: {np.round(ours, 4).tolist()} Hz")
+    assert ours[0] == pytest.approx(0.0, abs=1e-6) and theirs[0] == pytest.approx(0.0, abs=1e-6)  # the mechanism
+    np.testing.assert_allclose(ours[1:], theirs[1:], rtol=1e-8)
