@@ -12,7 +12,7 @@ from wecss.scene import OUTPUT_GROUPS
 from wecss.sim import simulate
 from wecss.sim._quantities import LOAD_PICKS, QUANTITIES
 
-_HELPERS = {"poses", "loads", "spectral_loads", "bound", "terms"}
+_HELPERS = {"poses", "loads", "spectral_loads", "bound", "terms", "fibre_field"}
 """Quantities other quantities are made of (not variables themselves)."""
 
 

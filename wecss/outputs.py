@@ -62,7 +62,8 @@ GROUPS: tuple[Group, ...] = (
     Group(
         "loads",
         "joint reactions, PTO end loads, section loads and hot-spot stresses of the device's members, recovered from "
-        "the record after the run (with amplitudes per wave frequency in frequency-domain runs)",
+        "the record after the run (with amplitudes per wave frequency in frequency-domain runs), and the stress field "
+        "and fatigue life at every fibre point of a frozen flexible body",
         default=False,
         streamed=False,
     ),
@@ -419,6 +420,21 @@ VARIABLES: tuple[Variable, ...] = (
         )
     ),
     *(
+        Variable(f"fibre_{name}", _LOADS, ("fibre_point",), long, unit, f"fibre_{name}")
+        for name, long, unit in (
+            (
+                "life",
+                "fatigue life at the point from its signed von Mises stress over the statistics window (rainflow, "
+                "Miner, paper 003 Eq. 55 and its Table 5 S-N curve; inf where nothing was counted)",
+                "year",
+            ),
+            ("damage", "Miner damage of the statistics window at the point", "1"),
+            ("stress_max", "largest signed von Mises stress at the point over the statistics window", "Pa"),
+            ("stress_min", "smallest signed von Mises stress at the point over the statistics window", "Pa"),
+            ("stress_rms", "RMS of the von Mises stress at the point over the statistics window", "Pa"),
+        )
+    ),
+    *(
         Variable(f"{term}_{part}", "hydrodynamics", ("time", "body", "axis"), f"{long}, {what}", unit, f"{term}_{part}")
         for term, long in (
             ("hydrostatic", "body-exact hydrostatic pressure force on the mesh below the free surface (whole)"),
@@ -515,6 +531,10 @@ COORDINATE_ATTRS: Mapping[str, Mapping[str, str]] = {
     "hydro_dof_angular": {"long_name": "rotational degree of freedom of the hydrodynamic database (body__Dof)"},
     "hydro_dof_generalised": {"long_name": "generalised mode of the hydrodynamic database (body__mode)"},
     "hot_spot": {"long_name": "hot spot of a beam member (member.spot)"},
+    "fibre_point": {
+        "long_name": "stress point of a frozen flexible body's structure, quasi-static (member.spot, or "
+        "member@station.fibreK at every node)"
+    },
     "section_axis": {"long_name": "member axes: x along the member from start to end, z up across it"},
 }
 """Attributes of the result's own coordinates (``body``, ``axis`` and ``omega`` are shared with the hydrodynamic

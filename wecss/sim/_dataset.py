@@ -58,6 +58,8 @@ def _coordinate(qs: Quantities, dim: str) -> Any:
         return [j.name for j in controlled.device.model.ordered_joints]
     if dim == "hot_spot":
         return hot_spot_names(controlled.device.members)
+    if dim == "fibre_point":
+        return list(qs.get("fibre_field").names)
     if dim == "omega":
         return qs.record.spectral.omega
     raise KeyError(f"no coordinate for dimension {dim!r}")

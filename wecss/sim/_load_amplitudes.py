@@ -15,6 +15,7 @@ v = 0 and quadratic in v (gyroscopic and Bdot terms), where central differences 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -69,7 +70,7 @@ def load_amplitudes(compiled: CompiledScene, spectral: Spectral) -> tuple[Loads,
     loads = _loads_of(compiled, rows)
     equilibrium = Loads(**{f: getattr(loads, f)[:1] for f in _FIELDS}, closure=0.0)
     z_hat = np.concatenate([spectral.z_hat[k] for k in keys], axis=0)  # (n_in, n_w)
-    out = {}
+    out: dict[str, Any] = {}
     for f in _FIELDS:
         values = getattr(loads, f)
         jac = (values[1::2] - values[2::2]) / (2 * steps.reshape((-1,) + (1,) * (values.ndim - 1)))

@@ -15,7 +15,7 @@ linearisation error for the linear and frequency-domain runs, whose records foll
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -45,6 +45,8 @@ class Loads:
     section : (n_t, n_spot, 6)
         Section loads N, Vy, Vz [N], T, My, Mz [N m] at each hot spot of the device's members, member axes (see
         ``wecss.sim._sections`` for the free body).
+    histories : dict of int to BodyHistory
+        What each body with members or a frozen flexible structure felt (by body index; see ``BodyHistory``).
     """
 
     joint_force: np.ndarray
@@ -55,6 +57,7 @@ class Loads:
     pto_body_moment: np.ndarray
     closure: float
     section: np.ndarray
+    histories: dict[int, BodyHistory] = field(default_factory=dict)
 
 
 def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, force: np.ndarray):
@@ -132,7 +135,7 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
     )
     child_of_joint = list(model.order)
     members = compiled.device.members
-    carriers = sorted({model.body_names.index(m.body) for m in members if m.hot_spots})
+    carriers = sorted({model.body_names.index(m.body) for m in members if m.hot_spots} | set(field_bodies(compiled)))
     gathered: dict[int, list[list[np.ndarray]]] = {i: [] for i in carriers}
     gravity = np.array([0.0, 0.0, -compiled.hydro.g])
     moored = p.mooring_damping.size > 0  # stored empty without dampers
@@ -184,7 +187,20 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         histories = {i: BodyHistory(*(np.array(col) for col in zip(*gathered[i], strict=True))) for i in carriers}
         index = {name: k for k, name in enumerate(model.body_names)}
         out.section = section_loads(members, index, model.bodies, histories)
+        out.histories = histories
     return out
+
+
+def field_bodies(compiled: CompiledScene) -> list[int]:
+    """Indices of the bodies whose stress field a run gives: the dry flexible bodies with frozen dynamics
+    (``wecss.sim._fibre_field``)."""
+    device = compiled.device
+    model = device.model
+    return [
+        model.body_names.index(name)
+        for name, flexible in device.flexible.items()
+        if flexible.dynamics == "frozen" and model.body(name).hydro_body is None
+    ]
 
 
 def _body_point_loads(compiled: CompiledScene, i: int, rot, pos, f_j, m_j, pto_loads, pto_bodies, pto_points):

@@ -22,9 +22,10 @@ from ..control.design import PowerBound, power_bound
 from ..multibody import difference
 from ..waves import Ramp
 from ._bound_window import window_bound
+from ._fibre_field import FibreField, fibre_field
 from ._layout import natural_hydro_order
 from ._load_amplitudes import load_amplitudes
-from ._loads import Loads, recover_loads
+from ._loads import Loads, field_bodies, recover_loads
 from ._record import Record
 from ._sections import hot_spot_stresses
 
@@ -122,6 +123,31 @@ def _loads(qs: Quantities) -> Loads:
     if r.hydro_order is not None:  # back to the database's order
         hydro = hydro[:, np.argsort(r.hydro_order)]
     return recover_loads(qs.controlled, r["q"], r["v"], r["a"], (r["x"], r["xd"], r["f"]), hydro)
+
+
+def _fibre_field(qs: Quantities) -> FibreField:
+    """The stress field of the device's frozen dry flexible bodies over the statistics window of the saved steps
+    (``wecss.sim._fibre_field``)."""
+    loads: Loads = qs.get("loads")
+    controlled = qs.controlled
+    model = controlled.device.model
+    time = qs.record.time
+    bodies = [
+        (controlled.device.flexible_body(model.body_names[i]), loads.histories[i])
+        for i in field_bodies(controlled)
+        if i in loads.histories
+    ]
+    n = time.size
+    start = n - max(1, round(controlled.scene.outputs.window * n))
+    return fibre_field(bodies, float(time[1] - time[0]) if n > 1 else 1.0, start)
+
+
+def _fibre(values: Callable[[FibreField], np.ndarray]) -> Callable[[Quantities], np.ndarray | None]:
+    def quantity(qs: Quantities) -> np.ndarray | None:
+        field = qs.get("fibre_field")
+        return values(field) if field.names else None
+
+    return quantity
 
 
 def _spectral_loads(qs: Quantities) -> tuple[Loads, Loads] | None:
@@ -285,6 +311,12 @@ QUANTITIES: dict[str, Callable[[Quantities], Any]] = {
     "body_position": lambda qs: qs.get("poses")[0],
     "body_rotation": lambda qs: qs.get("poses")[1],
     "loads": _loads,
+    "fibre_field": _fibre_field,
+    "fibre_life": _fibre(lambda f: f.life),
+    "fibre_damage": _fibre(lambda f: f.damage),
+    "fibre_stress_max": _fibre(lambda f: f.maximum),
+    "fibre_stress_min": _fibre(lambda f: f.minimum),
+    "fibre_stress_rms": _fibre(lambda f: f.rms),
     "spectral_loads": _spectral_loads,
     "mean_power": _mean_power,
     "rms_stroke": _rms_stroke,
