@@ -93,3 +93,20 @@ def hinged_beam(
         Joint("hub", "revolute", "beam", "ground", axis=list(axis), point=[0.0, 0.0, 0.0]),
     ]
     return Multibody(bodies, joints)
+
+
+def floating_arm(base: str = "free") -> Multibody:
+    """The flexible L arm itself on ``base`` (its floating frame held at A), carrying the float and the lug."""
+    el = l_arm()
+    inv = el.invariants
+    bodies = [
+        Body("arm", inv.mass, inv.inertia, inv.origin, elastic=el),
+        Body("float", 8.0, [0.3, 0.4, 0.5], C + np.array([0.2, 0.1, -0.3])),
+        Body("lug", 2.0, [0.1, 0.1, 0.1], LUG + np.array([0.0, 0.0, -0.2])),
+    ]
+    joints = [
+        Joint("base", base, "arm"),  # type: ignore[arg-type]
+        Joint("float_hinge", "revolute", "float", "arm", axis=[0.0, 1.0, 0.2], point=C),
+        Joint("lug_weld", "weld", "lug", "arm"),
+    ]
+    return Multibody(bodies, joints)

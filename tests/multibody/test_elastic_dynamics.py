@@ -23,7 +23,7 @@ from wecss.multibody import (
 from wecss.multibody._se3 import so3_log
 from wecss.structure import Invariants
 
-from .elastic_models import LUG, C, arm_device, hinged_beam, l_arm
+from .elastic_models import LUG, C, arm_device, floating_arm, hinged_beam, l_arm
 
 
 def _random_state(model: Multibody, seed: int, size: float = 0.3) -> tuple[np.ndarray, np.ndarray]:
@@ -46,11 +46,21 @@ def _mass_rate(dyn: Dynamics, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     return (16 * r2 - r1) / 15
 
 
-@pytest.mark.parametrize("base", ["free", "planar", "fixed"])
+MODELS = {
+    "hull on a free base": lambda: arm_device("free"),
+    "hull on a planar base": lambda: arm_device("planar"),
+    "hull fixed": lambda: arm_device("fixed"),
+    "flexible arm on a free base": lambda: floating_arm("free"),
+    "flexible arm on a planar base": lambda: floating_arm("planar"),
+}
+
+
+@pytest.mark.parametrize("base", list(MODELS))
 def test_energy_identity_at_random_states(base: str) -> None:
     """d/dt (v' M* v / 2) = v' F*: the quadratic-velocity terms do no work, v' (dM*/dt - 2 N*) v = 0, for a hull
-    carrying a flexible arm (24 modal coordinates) that carries a float on an oblique hinge and a welded lug."""
-    model = arm_device(base)
+    carrying a flexible arm (24 modal coordinates) that carries a float on an oblique hinge and a welded lug, and
+    for the arm itself as the base."""
+    model = MODELS[base]()
     dyn = Dynamics(model)
     worst = 0.0
     for seed in range(3):
@@ -60,6 +70,38 @@ def test_energy_identity_at_random_states(base: str) -> None:
         worst = max(worst, abs(work) / abs(float(v @ m_dot @ v)))
     print(f"energy identity ({base} base): |v' (dM*/dt - 2 N*) v| / |v' dM*/dt v| = {worst:.1e}")
     assert worst < 1e-10
+
+
+def _richardson(fun, h: float = 1e-3):  # type: ignore[no-untyped-def]
+    """d/ds fun(s) at 0 by central differences at h and h/2 with one Richardson step (error O(h^4))."""
+    d1 = (fun(h) - fun(-h)) / (2 * h)
+    d2 = (fun(h / 2) - fun(-h / 2)) / h
+    return (4 * d2 - d1) / 3
+
+
+@pytest.mark.parametrize("base", list(MODELS))
+def test_bdot_is_the_rate_of_b(base: str) -> None:
+    """Bdot (the elastic columns of the centre of mass and the attachments' dS/dt included) is the derivative of
+    B along the motion: the energy identity cannot see Bdot (it cancels there), this does."""
+    model = MODELS[base]()
+    q, v = _random_state(model, 31)
+    bdot = kinematics(model, q, v).Bdot
+    assert bdot is not None
+    rate = _richardson(lambda h: kinematics(model, integrate(model, q, h * v)).B)
+    np.testing.assert_allclose(bdot, rate, rtol=0, atol=1e-8 * np.abs(bdot).max())
+
+
+def test_the_quadratic_velocity_terms_are_lagrange_s() -> None:
+    """With joint and modal coordinates only (a fixed hull): N* v = dM*/dt v - dT/dq, T = v' M*(q) v / 2, by
+    differences of T itself (a skew error in N*, invisible to the energy identity, shows here)."""
+    model = arm_device("fixed")
+    dyn = Dynamics(model)
+    q, v = _random_state(model, 32)
+    n_v = dyn.terms(q, v).nonlinear @ v
+    m_dot_v = _richardson(lambda h: dyn.terms(integrate(model, q, h * v), v).mass) @ v
+    grad = np.array([_richardson(lambda h, e=e: dyn.kinetic_energy(integrate(model, q, h * e), v))
+                     for e in np.eye(model.nv)])  # fmt: skip
+    np.testing.assert_allclose(n_v, m_dot_v - grad, rtol=0, atol=1e-7 * np.abs(n_v).max())
 
 
 def test_energy_is_constant_along_the_flow_with_gravity_and_geometric_stiffening() -> None:
@@ -209,7 +251,12 @@ def test_an_elastic_body_without_modes_is_the_rigid_body() -> None:
         np.zeros((0, 0)), np.zeros((0, 0)), inv.second_moment, np.zeros((0, 3, 3)), np.zeros((0, 0, 3, 3)),
         np.zeros((0, 0, 3)),
     )  # fmt: skip
-    flexible = arm_device("free", ElasticBody((), empty))
+    from wecss.multibody import Attachment
+
+    points = {name: a.point for name, a in elastic.attachments.items()}
+    flexible = arm_device(
+        "free", ElasticBody((), empty, {n: Attachment(p, np.zeros((6, 0))) for n, p in points.items()})
+    )
     bodies = list(flexible.bodies)
     bodies[1] = Body("arm", inv.mass, inv.inertia, inv.origin)
     rigid = Multibody(bodies, flexible.joints)
@@ -299,3 +346,21 @@ def test_an_actuator_end_rides_on_its_node() -> None:
     assert np.abs(transmission[model.mode_velocity_start[1] : model.mode_velocity_start[2]]).max() > 0
     with pytest.raises(ValueError, match="needs the body's attachment 'pto:other'"):
         ActuatorPTO("other", "hull", np.array([-0.3, 0.0, 0.4]), "arm", LUG).stroke(model, q, kinematics(model, q))
+
+
+def test_a_child_of_a_flexible_body_needs_its_attachment() -> None:
+    elastic = l_arm()
+    inv = elastic.invariants
+    shapes = elastic.attachments["float_hinge"].shapes
+    from wecss.multibody import Attachment
+
+    missing = ElasticBody(elastic.names, inv, {"lug_weld": elastic.attachments["lug_weld"]})
+    with pytest.raises(
+        ValueError, match=r"joint 'float_hinge': its parent 'arm' is flexible.*attachments: \['lug_weld'\]"
+    ):
+        arm_device("free", missing)
+    moved = ElasticBody(elastic.names, inv, {**elastic.attachments, "float_hinge": Attachment(C + 1.0, shapes)})
+    with pytest.raises(ValueError, match=r"joint 'float_hinge': its point .* is not where its attachment"):
+        arm_device("free", moved)
+    with pytest.raises(ValueError, match="must be dry"):
+        Body("arm", inv.mass, inv.inertia, inv.origin, "arm_hydro", elastic=elastic)

@@ -196,7 +196,7 @@ def assemble(
         )
     coupling: HydroCoupling | None
     if water:
-        statics = device.statics(hydro)
+        statics = device.rigid_statics(hydro)
         q = statics.equilibrium()
         coupling = statics.coupling
     else:

@@ -194,6 +194,15 @@ class Device:
         """
         return flexible_body(self.model, self.ptos, self.members, self.masses, body, self._flexible_spec(body))
 
+    def _refuse_elastic(self, what: str) -> None:
+        """Refuse a rigid-model method of a device with elastic bodies (it would run them rigid)."""
+        if self.elastic_bodies:
+            raise ValueError(
+                f"device {self.name!r}: Device.{what} uses the rigid model, and bodies {list(self.elastic_bodies)} "
+                "have flexible.dynamics = 'elastic'; use Device.elastic_model() with wecss.multibody, or dynamics = "
+                "'frozen'"
+            )
+
     @property
     def elastic_bodies(self) -> tuple[str, ...]:
         """The flexible bodies whose modes move in the equations of motion (``flexible.dynamics = "elastic"``)."""
@@ -310,16 +319,27 @@ class Device:
             If the model's bodies do not match the database's, or a mooring holds a DOF the database has no data
             for.
         """
+        self._refuse_elastic("coupling")
+        return self._coupling(hydro)
+
+    def _coupling(self, hydro: str | Path | HydroData | None) -> HydroCoupling:
         return HydroCoupling.from_hydro(self.model, self.hydro(hydro), self.moorings)
 
-    def statics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> StaticModel:
-        """Gravity, buoyancy, hydrostatics and PTO springs at rest."""
-        coupling = self.coupling(hydro) if with_hydro else None
+    def rigid_statics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> StaticModel:
+        """The statics of the rigid model (:attr:`model`), flexible bodies frozen whatever their ``dynamics``: the
+        equilibrium the structural modal analysis linearises about."""
+        coupling = self._coupling(hydro) if with_hydro else None
         g = coupling.hydro.g if coupling is not None else GRAVITY
         return StaticModel(self.model, g, coupling, self.ptos)
 
+    def statics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> StaticModel:
+        """Gravity, buoyancy, hydrostatics and PTO springs at rest."""
+        self._refuse_elastic("statics")
+        return self.rigid_statics(hydro, with_hydro=with_hydro)
+
     def dynamics(self, hydro: str | Path | HydroData | None = None, *, with_hydro: bool = True) -> Dynamics:
         """MFM dynamics with the infinite-frequency added mass (when ``with_hydro``)."""
+        self._refuse_elastic("dynamics")
         added = self.coupling(hydro).added_mass_inf if with_hydro else None
         return Dynamics(self.model, added)
 

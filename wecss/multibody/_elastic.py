@@ -118,10 +118,16 @@ class ElasticBody:
         object.__setattr__(self, "names", names)
         n = len(names)
         inv = self.invariants
-        if inv.translational_coupling.shape != (3, n) or inv.modal_mass.shape != (n, n):
+        expected = {
+            "translational_coupling": (3, n), "rotational_coupling": (3, n), "modal_mass": (n, n),
+            "modal_stiffness": (n, n), "modal_damping": (n, n), "inertia_first": (n, 3, 3),
+            "inertia_second": (n, n, 3, 3), "gyroscopic": (n, n, 3),
+        }  # fmt: skip
+        wrong = {k: np.shape(getattr(inv, k)) for k, shape in expected.items() if np.shape(getattr(inv, k)) != shape}
+        if wrong:
             raise ValueError(
-                f"elastic body with {n} modal coordinates {list(names)}: its invariants have "
-                f"{inv.modal_mass.shape[0]} (modal mass {inv.modal_mass.shape})"
+                f"elastic body with {n} modal coordinates {list(names)}: its invariants {sorted(wrong)} have the "
+                f"shapes {list(wrong.values())}; accepted: {[expected[k] for k in sorted(wrong)]}"
             )
         attachments = dict(self.attachments)
         for name, a in attachments.items():

@@ -113,6 +113,12 @@ class Body:
                     f"body {self.name!r}: give its modes or its elastic model, not both (an elastic body's modes are "
                     "its modal coordinates)"
                 )
+            if self.hydro_body is not None:
+                raise ValueError(
+                    f"body {self.name!r}: a flexible body in a floating frame must be dry (it has the hydro body "
+                    f"{self.hydro_body!r}; the wetted modes of a flexible body are not modelled): make the float a "
+                    "rigid child"
+                )
             check_elastic_body(self.name, self.mass, inertia, self.center_of_mass, self.elastic)
             modes = self.elastic.modes(self.name)
         elif not isinstance(modes, GeneralisedModes) or modes.body != self.name:
@@ -120,6 +126,36 @@ class Body:
             if modes.n:
                 modes = GeneralisedModes(modes.names, modes.mass, modes.stiffness, modes.damping, self.name)
         object.__setattr__(self, "modes", modes)
+
+
+def _check_attachments(bodies: Sequence[Body], joints: Sequence[Joint]) -> None:
+    """Every joint whose parent is a flexible body rides on one of its attachments, named as the joint, at the
+    joint's point (a revolute joint).
+
+    Raises
+    ------
+    ValueError
+        Naming the joint, the body and the attachments it has, or the two points.
+    """
+    by_name = {b.name: b for b in bodies}
+    for joint in joints:
+        parent = by_name.get(joint.parent) if joint.parent is not None else None
+        if parent is None or parent.elastic is None:
+            continue
+        attachments = parent.elastic.attachments
+        if joint.name not in attachments:
+            raise ValueError(
+                f"joint {joint.name!r}: its parent {parent.name!r} is flexible, and the joint needs the body's "
+                f"attachment {joint.name!r} (the node it rides on); attachments: {sorted(attachments)}"
+            )
+        point = attachments[joint.name].point
+        if joint.point is not None and not np.allclose(
+            point, joint.point, rtol=0, atol=1e-9 * max(1.0, abs(point).max())
+        ):
+            raise ValueError(
+                f"joint {joint.name!r}: its point {np.round(joint.point, 9).tolist()} m is not where its attachment on "
+                f"{parent.name!r} is, {np.round(point, 9).tolist()} m"
+            )
 
 
 TRIANGLE_TOL: float = 1e-9
@@ -323,6 +359,7 @@ class Multibody:
         object.__setattr__(self, "order", tuple(order))
         object.__setattr__(self, "parent", tuple(parent))
         object.__setattr__(self, "joint_of", tuple(joint_of))
+        _check_attachments(self.bodies, self.joints)
         velocities = self.velocity_names
         repeated = sorted({v for v in velocities if velocities.count(v) > 1})
         if repeated:

@@ -30,19 +30,11 @@ import xarray as xr
 
 from ..devices import FlexibleBody
 from ..results import StressFieldRecorder
-from ..structure import ModalBasis, StressModes, craig_bampton, stress_modes
+from ..structure import ModalBasis, StressModes, craig_bampton, rigid_load_coordinates, stress_modes
 from ._sections import BodyHistory
 
 CHUNK = 2000
 """Steps recorded at once (the memory is CHUNK times the number of fibre points)."""
-_PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))  # wecss.structure.RIGID_LOADS' products
-
-
-def rigid_load_coordinates(history: BodyHistory) -> np.ndarray:
-    """(n_t, 12): g - a, alpha and the products of omega (``wecss.structure.RIGID_LOADS``), body axes."""
-    w = history.omega
-    products = np.stack([w[:, a] * w[:, b] for a, b in _PAIRS], axis=1)
-    return np.concatenate([history.gravity - history.acceleration, history.alpha, products], axis=1)
 
 
 def static_basis(body: FlexibleBody) -> tuple[ModalBasis, StressModes]:
@@ -56,9 +48,9 @@ def quasi_static_coordinates(
     body: FlexibleBody, basis: ModalBasis, history: BodyHistory
 ) -> tuple[np.ndarray, np.ndarray]:
     """The coordinates xi (n_t, n) of the quasi-static response in ``basis`` (:func:`static_basis`) and the
-    rigid-motion load coordinates (n_t, 12) (see the module docstring). The history's last point load (the body's
-    own, lumped at its centre of mass) is replaced by its distributed weight and inertia; a load whose point moves
-    on the body is taken at its first position with its moment shifted there.
+    rigid-motion load coordinates (n_t, 12) (see the module docstring). The history's first point load (its own
+    joint's reaction) acts at the clamp, which the basis holds; its last (the body's own, lumped at its centre of
+    mass: its weight and inertia, the body being dry) is replaced by its distributed weight and inertia.
 
     Raises
     ------
@@ -68,7 +60,9 @@ def quasi_static_coordinates(
     frame, phi = body.frame, basis.basis
     named = {name: position for name, (_, position) in frame.points.items()}
     load = np.zeros((history.points.shape[0], phi.shape[1]))
-    for k in range(history.points.shape[1] - 1):
+    # the first point load is the body's own joint's reaction, at the clamp the basis holds (``field_bodies``); the
+    # last is its own load at its centre of mass
+    for k in range(1, history.points.shape[1] - 1):
         point = history.points[0, k]
         match = [n for n, p in named.items() if np.allclose(p, point, rtol=0, atol=1e-9 * max(1.0, np.abs(p).max()))]
         if not match:
@@ -76,10 +70,9 @@ def quasi_static_coordinates(
                 f"body {body.name!r}: a load acts at {np.round(point, 6).tolist()} m, at none of its structure's "
                 f"points {sorted(named)}"
             )
-        moment = history.moments[:, k] + np.cross(history.points[:, k] - point, history.forces[:, k])
-        wrench = np.concatenate([history.forces[:, k], moment], axis=1)
+        wrench = np.concatenate([history.forces[:, k], history.moments[:, k]], axis=1)
         load += wrench @ (phi.T @ frame.point_map(match[0]).T).T
-    rigid = rigid_load_coordinates(history)
+    rigid = rigid_load_coordinates(history.gravity - history.acceleration, history.alpha, history.omega)
     origin = body.invariants.origin
     load += rigid @ (phi.T @ frame.rigid_motion_loads(origin)).T
     return load / basis.omega**2, rigid
@@ -101,8 +94,10 @@ class FibreField:
 
 def fibre_field(bodies: list[tuple[FlexibleBody, BodyHistory]], dt: float, start: int) -> FibreField:
     """Record each body's field from step ``start`` (the statistics window) in chunks of :data:`CHUNK` steps,
-    saved steps ``dt`` [s] apart."""
+    saved steps ``dt`` [s] apart (no field for a window of fewer than two steps)."""
     parts: list[xr.Dataset] = []
+    if bodies and bodies[0][1].points.shape[0] - start < 2:
+        bodies = []
     for body, history in bodies:
         basis, modes = static_basis(body)
         xi, rigid = quasi_static_coordinates(body, basis, history)

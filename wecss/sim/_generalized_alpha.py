@@ -141,7 +141,8 @@ def alpha_step(
             return AlphaState(t1, q1, v1, a1, v_dot), iteration
     raise NewtonFailure(
         f"generalised-alpha step from t = {s.t:.6g} s (h = {h:.3g} s): the modified Newton iteration did not converge "
-        f"in {scheme.max_iterations} iterations (last change of the accelerations {change:.3g}); a smaller step, or "
+        f"in {scheme.max_iterations} iterations (last change of the accelerations {change:.3g}, tolerance "
+        f"{scheme.tolerance:.3g} of the largest acceleration); a smaller step, or "
         "an iteration matrix nearer the state (a linear model about it), converges"
     )
 

@@ -192,15 +192,26 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
 
 
 def field_bodies(compiled: CompiledScene) -> list[int]:
-    """Indices of the bodies whose stress field a run gives: the dry flexible bodies with frozen dynamics
-    (``wecss.sim._fibre_field``)."""
+    """Indices of the bodies whose stress field a run gives (``wecss.sim._fibre_field``): the flexible bodies with
+    frozen dynamics that are dry (no hydro body, mesh, drag, Morison element or mooring: every load on them acts at a
+    point of their structure or is their weight and inertia), held at their revolute joint's point, and whose
+    children hang on revolute or welded joints (at fixed points of the structure). The scene's ``outputs.every``
+    must be 1: a rainflow count of every k-th step misses the cycles between them."""
     device = compiled.device
     model = device.model
-    return [
-        model.body_names.index(name)
-        for name, flexible in device.flexible.items()
-        if flexible.dynamics == "frozen" and model.body(name).hydro_body is None
-    ]
+    if compiled.scene.outputs.every != 1:
+        return []
+    wet = {m.body for m in device.meshes} | {d.body for d in device.drag} | {m.body for m in device.morison}
+    wet |= {m.body for m in device.moorings}
+    out = []
+    for name, flexible in device.flexible.items():
+        body = model.body(name)
+        own = model.joints[model.joint_of[model.body_names.index(name)]]
+        held = own.kind == "revolute" and (flexible.clamp is None or np.allclose(flexible.clamp, own.point))  # type: ignore[arg-type]
+        children = [j.kind in ("revolute", "weld") for j in model.joints if j.parent == name]
+        if flexible.dynamics == "frozen" and body.hydro_body is None and name not in wet and held and all(children):
+            out.append(model.body_names.index(name))
+    return out
 
 
 def _body_point_loads(compiled: CompiledScene, i: int, rot, pos, f_j, m_j, pto_loads, pto_bodies, pto_points):

@@ -26,7 +26,7 @@ from ._fibre_field import FibreField, fibre_field
 from ._layout import natural_hydro_order
 from ._load_amplitudes import load_amplitudes
 from ._loads import Loads, field_bodies, recover_loads
-from ._record import Record
+from ._record import Record, stats_start
 from ._sections import hot_spot_stresses
 
 
@@ -137,8 +137,12 @@ def _fibre_field(qs: Quantities) -> FibreField:
         for i in field_bodies(controlled)
         if i in loads.histories
     ]
-    n = time.size
-    start = n - max(1, round(controlled.scene.outputs.window * n))
+    n = time.size  # saved rows: the start and every step (``field_bodies`` asks for every step)
+    start = (
+        stats_start(controlled)
+        if n == controlled.n_steps + 1
+        else n - max(1, round(controlled.scene.outputs.window * (n - 1)))
+    )
     return fibre_field(bodies, float(time[1] - time[0]) if n > 1 else 1.0, start)
 
 

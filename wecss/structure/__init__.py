@@ -15,6 +15,7 @@ from ._frame import RIGID_LOADS as RIGID_LOADS
 from ._frame import Frame as Frame
 from ._frame import PointMass as PointMass
 from ._frame import offset_map as offset_map
+from ._frame import rigid_load_coordinates as rigid_load_coordinates
 from ._geometric import axial_forces as axial_forces
 from ._geometric import axial_geometric_stiffness as axial_geometric_stiffness
 from ._invariants import Invariants as Invariants

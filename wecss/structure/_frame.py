@@ -41,6 +41,16 @@ components [rad^2/s^2]. The loads of the body's own weight and d'Alembert inerti
 
 _PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
 
+
+def rigid_load_coordinates(gravity_minus_acceleration: np.ndarray, alpha: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """The :data:`RIGID_LOADS` coordinates (..., 12) of a rigid-body motion from g - a [m/s^2], the angular
+    acceleration alpha [rad/s^2] and velocity omega [rad/s] (each (..., 3), body axes)."""
+    w = np.asarray(omega, dtype=float)
+    products = np.stack([w[..., a] * w[..., b] for a, b in _PAIRS], axis=-1)
+    return np.concatenate([np.asarray(gravity_minus_acceleration, dtype=float), np.asarray(alpha, dtype=float),
+                           products], axis=-1)  # fmt: skip
+
+
 COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 """Names of a node's six DOFs, in order: displacements and rotations along the body's x, y, z."""
 

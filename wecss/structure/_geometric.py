@@ -10,10 +10,13 @@ is the geometric stiffness: the energy is
 
 with K_G the frame's geometric stiffness (``Frame.geometric_stiffness``). Its generalised force
 -dU3/dxi = -(sum_m xi_m A_m) xi - 1/2 (xi' A_j xi)_j holds the geometric stiffening of the current axial force and
-the axial shortening of a bent beam that goes with it: a potential, so a free body keeps its energy, and linearised
-about a preloaded state it gives K_G of the preload. The preload is in the basis when the basis holds the static
-response to it: the inertia-relief and centrifugal vectors of ``craig_bampton`` (weight, rigid accelerations, a
-spin) and its constraint modes (loads at the interfaces).
+the axial shortening of a bent beam that goes with it: a potential, so a free body keeps its energy. Linearised
+about a preloaded state xi0, its stiffness is sum_m xi0_m A_m (K_G of the preload's axial force) plus
+(A_j xi0)_k + (A_k xi0)_j, which vanish for a straight, purely axial preload (a spinning beam) and not for one that
+also bends the beam (a weight's sag). The preload is in the basis when the basis holds the static response to it:
+the inertia-relief and centrifugal vectors of ``craig_bampton`` (weight, rigid accelerations, a spin) and its
+constraint modes (loads at the interfaces). The quartic term of the strain energy is left out: for moderate
+deformations (the cubic energy alone is not bounded below).
 """
 
 from __future__ import annotations
