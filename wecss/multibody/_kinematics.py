@@ -226,8 +226,8 @@ def _elastic_attachment(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Carry a child's joint on its flexible parent's attachment ``name``: the parent's modal coordinates act as
     joints with the attachment's twists (``wecss.multibody._elastic``), filling their columns of S and dS/dt in place.
-    Returns the displacement and spatial velocity at the attachment. A joint with no attachment of that name rides on
-    the parent's floating frame (its clamp)."""
+    Returns the displacement and spatial velocity at the attachment (``Multibody`` refuses a child joint of a
+    flexible body without an attachment of its name; here one without rides on the floating frame)."""
     elastic = model.bodies[parent].elastic
     assert elastic is not None
     if name not in elastic.attachments:
