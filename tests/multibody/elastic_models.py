@@ -33,6 +33,19 @@ def l_arm(n_modes: int = 3, *, geometric: bool = True, soft: bool = False) -> El
     return ElasticBody.from_basis(basis, attachments, geometric=geometric)
 
 
+_ARM_CHILDREN = (
+    (
+        Body("float", 8.0, [0.3, 0.4, 0.5], C + np.array([0.2, 0.1, -0.3])),
+        Body("lug", 2.0, [0.1, 0.1, 0.1], LUG + np.array([0.0, 0.0, -0.2])),
+    ),
+    (
+        Joint("float_hinge", "revolute", "float", "arm", axis=[0.0, 1.0, 0.2], point=C),
+        Joint("lug_weld", "weld", "lug", "arm"),
+    ),
+)
+"""The arm's children, the float on an oblique hinge at the tip C and a lug welded at LUG: bodies, joints."""
+
+
 def arm_device(base: str = "free", elastic: ElasticBody | None = None) -> Multibody:
     """A hull on ``base``, the flexible arm hinged to it at A, a float hinged at the arm's tip on an oblique axis and a
     lug welded to the arm at LUG."""
@@ -41,14 +54,12 @@ def arm_device(base: str = "free", elastic: ElasticBody | None = None) -> Multib
     bodies = [
         Body("hull", 40.0, [3.0, 4.0, 5.0], [-0.5, 0.0, -0.2]),
         Body("arm", inv.mass, inv.inertia, inv.origin, elastic=el),
-        Body("float", 8.0, [0.3, 0.4, 0.5], C + np.array([0.2, 0.1, -0.3])),
-        Body("lug", 2.0, [0.1, 0.1, 0.1], LUG + np.array([0.0, 0.0, -0.2])),
+        *_ARM_CHILDREN[0],
     ]
     joints = [
         Joint("base", base, "hull"),  # type: ignore[arg-type]
         Joint("arm_hinge", "revolute", "arm", "hull", axis=[0.0, 1.0, 0.0], point=A),
-        Joint("float_hinge", "revolute", "float", "arm", axis=[0.0, 1.0, 0.2], point=C),
-        Joint("lug_weld", "weld", "lug", "arm"),
+        *_ARM_CHILDREN[1],
     ]
     return Multibody(bodies, joints)
 
@@ -99,14 +110,6 @@ def floating_arm(base: str = "free") -> Multibody:
     """The flexible L arm itself on ``base`` (its floating frame held at A), carrying the float and the lug."""
     el = l_arm()
     inv = el.invariants
-    bodies = [
-        Body("arm", inv.mass, inv.inertia, inv.origin, elastic=el),
-        Body("float", 8.0, [0.3, 0.4, 0.5], C + np.array([0.2, 0.1, -0.3])),
-        Body("lug", 2.0, [0.1, 0.1, 0.1], LUG + np.array([0.0, 0.0, -0.2])),
-    ]
-    joints = [
-        Joint("base", base, "arm"),  # type: ignore[arg-type]
-        Joint("float_hinge", "revolute", "float", "arm", axis=[0.0, 1.0, 0.2], point=C),
-        Joint("lug_weld", "weld", "lug", "arm"),
-    ]
+    bodies = [Body("arm", inv.mass, inv.inertia, inv.origin, elastic=el), *_ARM_CHILDREN[0]]
+    joints = [Joint("base", base, "arm"), *_ARM_CHILDREN[1]]  # type: ignore[arg-type]
     return Multibody(bodies, joints)

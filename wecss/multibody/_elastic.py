@@ -44,13 +44,7 @@ import numpy as np
 from ..structure import Invariants, ModalBasis, axial_geometric_stiffness, invariants
 from ._modes import GeneralisedModes
 from ._se3 import hat
-
-
-def _vector3(value: object, where: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
-    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
-        raise ValueError(f"{where} must be 3 finite numbers [m]; got {value!r}")
-    return arr
+from ._vectors import vector3
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,7 +63,7 @@ class Attachment:
     shapes: np.ndarray
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "point", _vector3(self.point, "attachment point"))
+        object.__setattr__(self, "point", vector3(self.point, "attachment point"))
         shapes = np.asarray(self.shapes, dtype=float)
         if shapes.ndim != 2 or shapes.shape[0] != 6 or not np.all(np.isfinite(shapes)):
             raise ValueError(

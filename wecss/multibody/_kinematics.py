@@ -119,6 +119,7 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
     jacobian_dot = [np.zeros((6, nv))] * n  # dS/dt
     displacement = [np.eye(4)] * n
     twist = [np.zeros(6)] * n  # spatial velocity of each body
+    points: dict[tuple[int, str], tuple[np.ndarray, np.ndarray]] = {}  # KinematicState.attachments
     iq = iv = 0
     for i in model.order:
         body = model.bodies[i]
@@ -128,8 +129,11 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
         vel = twist[par].copy() if par >= 0 else np.zeros(6)
         columns = jacobian[par].copy() if par >= 0 else np.zeros((6, nv))
         columns_dot = jacobian_dot[par].copy() if par >= 0 else np.zeros((6, nv))
-        if par >= 0 and model.bodies[par].elastic is not None:
+        parent_elastic = model.bodies[par].elastic if par >= 0 else None
+        if parent_elastic is not None and joint.name in parent_elastic.attachments:
             g, vel = _elastic_attachment(model, par, joint.name, q, v, g, vel, columns, columns_dot)
+            where = g[:3, :3] @ parent_elastic.attachments[joint.name].point + g[:3, 3]
+            points[(par, joint.name)] = (where, columns[:3] - hat(where) @ columns[3:])
         c0 = body.center_of_mass
         if joint.kind == "free":
             p = q[iq : iq + 3]
@@ -167,11 +171,12 @@ def kinematics(model: Multibody, q: np.ndarray, v: np.ndarray | None = None) -> 
         iq += joint.nq
         iv += joint.nv
 
-    points: dict[tuple[int, str], tuple[np.ndarray, np.ndarray]] = {}
-    for i in model.elastic_bodies:  # where each attachment of a flexible body is, and its velocity Jacobian
+    for i in model.elastic_bodies:  # the attachments that carry no child: where they are, their velocity Jacobian
         elastic = model.bodies[i].elastic
         assert elastic is not None
         for name, attachment in elastic.attachments.items():
+            if (i, name) in points:
+                continue
             columns = jacobian[i].copy()
             g, _ = _elastic_attachment(model, i, name, q, None, displacement[i], twist[i], columns, columns)
             where = g[:3, :3] @ attachment.point + g[:3, 3]

@@ -24,19 +24,13 @@ import numpy as np
 
 from ._elastic import ElasticBody, check_elastic_body
 from ._modes import NO_MODES, GeneralisedModes
+from ._vectors import vector3
 
 JointKind = Literal["fixed", "planar", "free", "revolute", "prismatic", "weld"]
 BASE_KINDS: tuple[str, ...] = ("fixed", "planar", "free")
 CHILD_KINDS: tuple[str, ...] = ("revolute", "prismatic", "weld")
 
 _AXIS_LABELS = {"revolute": ("roll", "pitch", "yaw"), "prismatic": ("surge", "sway", "heave")}
-
-
-def _vector(value: object, name: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
-    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be 3 finite numbers [m or unit vector]; got {value!r}")
-    return arr
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,7 +99,7 @@ class Body:
             )
         object.__setattr__(self, "mass", float(self.mass))
         object.__setattr__(self, "inertia", inertia)
-        object.__setattr__(self, "center_of_mass", _vector(self.center_of_mass, f"body {self.name!r} center_of_mass"))
+        object.__setattr__(self, "center_of_mass", vector3(self.center_of_mass, f"body {self.name!r} center_of_mass"))
         modes: Any = self.modes
         if self.elastic is not None:
             if modes is not NO_MODES:
@@ -221,7 +215,7 @@ class Joint:
         if self.kind in ("revolute", "prismatic"):
             if self.axis is None:
                 raise ValueError(f"joint {self.name!r}: a {self.kind} joint needs an axis")
-            axis = _vector(self.axis, f"joint {self.name!r} axis")
+            axis = vector3(self.axis, f"joint {self.name!r} axis", "unit vector")
             norm = float(np.linalg.norm(axis))
             if norm == 0:
                 raise ValueError(f"joint {self.name!r}: axis must not be zero")
@@ -238,7 +232,7 @@ class Joint:
         if self.kind == "revolute":
             if self.point is None:
                 raise ValueError(f"joint {self.name!r}: a revolute joint needs a point on its axis [m]")
-            object.__setattr__(self, "point", _vector(self.point, f"joint {self.name!r} point"))
+            object.__setattr__(self, "point", vector3(self.point, f"joint {self.name!r} point"))
 
     @cached_property
     def labels(self) -> tuple[str, ...]:

@@ -208,6 +208,19 @@ class Frame:
             )
         return self.node_dofs(node)[[COMPONENTS.index(c) for c in components]]
 
+    def basis(self, basis: np.ndarray) -> np.ndarray:
+        """``basis`` as a float array (n_dof, n) of fields over the frame's DOFs (one column per coordinate).
+
+        Raises
+        ------
+        ValueError
+            If it does not have one row per DOF of the frame.
+        """
+        phi = np.asarray(basis, dtype=float)
+        if phi.ndim != 2 or phi.shape[0] != self.n_dof:
+            raise ValueError(f"basis must be (n_dof = {self.n_dof}, n); got shape {phi.shape}")
+        return phi
+
     def point_map(self, name: str) -> np.ndarray:
         """(6, n_dof): the displacement and rotation of a named point from the DOFs."""
         node, position = self.point(name)

@@ -48,9 +48,7 @@ def axial_geometric_stiffness(frame: Frame, basis: np.ndarray) -> np.ndarray:
     ValueError
         If the basis does not have one row per DOF of the frame.
     """
-    phi = np.asarray(basis, dtype=float)
-    if phi.ndim != 2 or phi.shape[0] != frame.n_dof:
-        raise ValueError(f"basis must be (n_dof = {frame.n_dof}, n); got shape {phi.shape}")
+    phi = frame.basis(basis)
     forces = axial_forces(frame, phi)  # (n_element, n)
     out = np.zeros((phi.shape[1],) * 3)
     for m in range(phi.shape[1]):

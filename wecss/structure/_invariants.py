@@ -103,9 +103,7 @@ def invariants(
     ValueError
         If the basis does not have one row per DOF of the frame.
     """
-    phi = np.asarray(basis, dtype=float)
-    if phi.ndim != 2 or phi.shape[0] != frame.n_dof:
-        raise ValueError(f"basis must be (n_dof = {frame.n_dof}, n); got shape {phi.shape}")
+    phi = frame.basis(basis)
     n = phi.shape[1]
     groups = frame.mass_points
     if origin is None:
