@@ -135,6 +135,13 @@ class Workspace(NamedTuple):
     Scratch: force (n_cart,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
     vec, vec2, t_step (3,), r_step, r_new (3, 3)
     Hydrodynamic terms beyond the linear database: terms (``wecss.compiled._viscous.TermsWork``)
+    Flexible bodies (``Plant.elastic``; empty without them)
+        att_cols, att_cols_dot (n_att, nm, 6): the world twists of the parent's mode columns on each elastic
+        attachment and their time derivatives (they differ between the children of one flexible body, so they are
+        kept per attachment, not in ``cols``); active_mass (m, m): ``Plant.active_mass`` with the flexible bodies'
+        M(xi) at the configuration; el_mass (n_el, 3 + nm, 3 + nm) M(xi), el_dmass (n_el, nm, 3 + nm, 3 + nm)
+        dM/dxi; quad (n_cart,) their quadratic-velocity vector (D M + Q) Y on the rotation and mode rows; scratch
+        el_y, el_my (3 + nm,), vec3 (3,)
     """
 
     rot: np.ndarray
@@ -172,6 +179,15 @@ class Workspace(NamedTuple):
     r_new: np.ndarray
     t_step: np.ndarray
     terms: TermsWork
+    att_cols: np.ndarray
+    att_cols_dot: np.ndarray
+    active_mass: np.ndarray
+    el_mass: np.ndarray
+    el_dmass: np.ndarray
+    el_y: np.ndarray
+    el_my: np.ndarray
+    quad: np.ndarray
+    vec3: np.ndarray
 
 
 @kernel
@@ -183,6 +199,9 @@ def workspace(p: Plant) -> Workspace:
     m = p.active.shape[0]
     n_h = p.hydro_index.shape[0]
     n_pto = p.pto_kind.shape[0]
+    n_el = p.elastic.body.shape[0]
+    nm = p.elastic.modal_mass.shape[1]
+    n_att = p.elastic.child.shape[0]
     return Workspace(
         np.zeros((n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((6, nv)), np.zeros((n_cart, nv)),
         np.zeros((nv, m)), np.zeros((n_h, nv)), np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros(nv),
@@ -192,6 +211,9 @@ def workspace(p: Plant) -> Workspace:
         np.zeros(n_cart), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
         np.zeros(6), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3),
         terms_work(p.viscous, n),
+        np.zeros((n_att, nm, 6)), np.zeros((n_att, nm, 6)), p.active_mass.copy(),
+        np.zeros((n_el, 3 + nm, 3 + nm)), np.zeros((n_el, nm, 3 + nm, 3 + nm)), np.zeros(3 + nm), np.zeros(3 + nm),
+        np.zeros(n_cart), np.zeros(3),
     )  # fmt: skip
 
 
@@ -202,9 +224,11 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
     rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
+    el = p.elastic
     _frames(
         p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, p.com0, q, w.rot, w.trans, w.pos,
-        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True,
+        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True, el.of_body, el.of_child, el.size, el.coordinate,
+        el.mass, el.first_moment, el.coupling, el.twists, w.att_cols,
     )  # fmt: skip
     # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
     for i in range(n):
@@ -226,6 +250,43 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
         for c in range(nv):
             b[row, c] = 0.0
         b[row, p.cart_column[row]] = 1.0
+    if el.body.shape[0] > 0:
+        _place_elastic(p, w)
+
+
+@inline_kernel
+def _place_elastic(p: Plant, w: Workspace) -> None:
+    """B's columns of the flexible bodies' modes (``wecss.multibody._kinematics``): on the rigid rows of a body
+    carried by an elastic attachment, [[I, -hat(p)], [0, R']] times the attachment's twist; on the body's own
+    translational rows, R Ct / m (its centre of mass moves with the structure)."""
+    el = p.elastic
+    b, tmp = w.b, w.vec
+    for i in range(p.com0.shape[0]):
+        r = w.rot[i]
+        pi = w.pos[i]
+        r0 = p.cart_start[i]
+        for att in range(el.child.shape[0]):
+            if el.on_path[i, att] == 0.0:
+                continue
+            e = el.of_body[el.parent[att]]
+            for k in range(el.size[e]):
+                c = el.column[e] + k
+                s = w.att_cols[att, k]
+                _cross(pi, s[3:], tmp)
+                for a in range(3):
+                    b[r0 + a, c] = s[a] - tmp[a]
+                    b[r0 + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+        e = el.of_body[i]
+        if e >= 0:
+            m = el.mass[e]
+            for k in range(el.size[e]):
+                c = el.column[e] + k
+                for a in range(3):
+                    b[r0 + a, c] = (
+                        r[a, 0] * (el.coupling[e, 0, k] / m)
+                        + r[a, 1] * (el.coupling[e, 1, k] / m)
+                        + r[a, 2] * (el.coupling[e, 2, k] / m)
+                    )
 
 
 @inline_kernel
@@ -233,12 +294,18 @@ def _frames(
     order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, q_start: np.ndarray, n_cols: np.ndarray,
     free: np.ndarray, joint_twists: np.ndarray, com0: np.ndarray, q: np.ndarray, rot: np.ndarray, trans: np.ndarray,
     pos: np.ndarray, cols: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
-    r_new: np.ndarray, twists: bool,
+    r_new: np.ndarray, twists: bool, of_body: np.ndarray, of_child: np.ndarray, el_size: np.ndarray,
+    el_coordinate: np.ndarray, el_mass: np.ndarray, el_first_moment: np.ndarray, el_coupling: np.ndarray,
+    att_twists: np.ndarray, att_cols: np.ndarray,
 ) -> None:  # fmt: skip
     """The bodies' frames rot, trans and CoM positions pos at configuration ``q``; with ``twists`` also the world
     twists of the joint columns, ``cols`` (the arrays as in Plant and Workspace). It takes the arrays, not the
     tuples: a call with the Plant and Workspace costs about 1 us (a reference count per array they hold), more than
-    the frames of a few bodies, and :func:`poses` calls it once per configuration."""
+    the frames of a few bodies, and :func:`poses` calls it once per configuration.
+
+    Flexible bodies (``Plant.elastic``): a joint on an elastic attachment of its parent rides on
+    prod_k exp(psi_k xi_k) of the attachment's twists (their world twists into ``att_cols`` with ``twists``); a
+    flexible body's centre of mass is c0 + (s0 + Ct xi) / m."""
     n = com0.shape[0]
     if twists:
         for a in range(6):
@@ -255,6 +322,28 @@ def _frames(
                 r[a, b] = rot[par, a, b] if par >= 0 else (1.0 if a == b else 0.0)
         iv = col_start[i]
         iq = q_start[i]
+        att = of_child[i]
+        if att >= 0:  # on an elastic attachment of the parent: G <- G prod_k exp(psi_k xi_k)
+            e = of_body[par]
+            first = el_coordinate[e]
+            for k in range(el_size[e]):
+                psi = att_twists[att, k]
+                if twists:
+                    _rotate(r, psi[3:], tmp)
+                    _rotate(r, psi[:3], tmp2)
+                    for a in range(3):
+                        att_cols[att, k, 3 + a] = tmp[a]
+                    _cross(t, tmp, t_step)
+                    for a in range(3):
+                        att_cols[att, k, a] = tmp2[a] + t_step[a]
+                _screw(psi, q[first + k], r_step, t_step)
+                _rotate(r, t_step, tmp)
+                for a in range(3):
+                    t[a] += tmp[a]
+                _compose(r, r_step, r_new)
+                for a in range(3):
+                    for b in range(3):
+                        r[a, b] = r_new[a, b]
         if free[i] == 1:
             _quat_matrix_into(q, iq + 3, r)
             _rotate(r, com0[i], tmp)
@@ -291,7 +380,17 @@ def _frames(
                 for a in range(3):
                     for b in range(3):
                         r[a, b] = r_new[a, b]
-        _rotate(r, com0[i], tmp)
+        e = of_body[i]
+        if e >= 0:  # a flexible body's centre of mass moves with the structure: c0 + (s0 + Ct xi) / m
+            first = el_coordinate[e]
+            for a in range(3):
+                moment = el_first_moment[e, a]
+                for k in range(el_size[e]):
+                    moment += el_coupling[e, a, k] * q[first + k]
+                tmp2[a] = com0[i, a] + moment / el_mass[e]
+            _rotate(r, tmp2, tmp)
+        else:
+            _rotate(r, com0[i], tmp)
         for a in range(3):
             pos[i, a] = tmp[a] + t[a]
 
@@ -337,6 +436,22 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
         else:
             for a in range(6):  # element loops: a slice assignment is a call (and allocates)
                 vel[a] = w.spatial[par, a] if par >= 0 else 0.0
+            att = p.elastic.of_child[i]
+            if att >= 0:  # on an elastic attachment: the parent's mode columns come first
+                e = p.elastic.of_body[par]
+                first = p.elastic.column[e]
+                for k in range(p.elastic.size[e]):
+                    s_att = w.att_cols[att, k]
+                    sd_att = w.att_cols_dot[att, k]
+                    _cross(vel[3:], s_att[:3], tmp)
+                    _cross(s_att[3:], vel[:3], tmp2)
+                    for a in range(3):
+                        sd_att[a] = tmp[a] - tmp2[a]
+                    _cross(vel[3:], s_att[3:], tmp)
+                    for a in range(3):
+                        sd_att[3 + a] = tmp[a]
+                    for a in range(6):
+                        vel[a] += s_att[a] * v[first + k]
             for k in range(p.n_cols[i]):
                 col = iv + k
                 s = cols[:, col]
@@ -355,6 +470,7 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
     # per body: CoM velocity, body angular velocity, and Bdot_i v = [-lin x w + A_lin - p x A_ang; R' A_ang] with
     # A = sum over the body's columns of v_c dS_c/dt (the columns' -hat(w_b) R' terms sum to -w_b x w_b = 0)
     acc = w.partial
+    elastic = p.elastic.body.shape[0] > 0
     for i in range(n):
         r = w.rot[i]
         pi = w.pos[i]
@@ -369,12 +485,52 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
             if p.chain[i, c] != 0.0:
                 for a in range(6):
                     acc[a] += cols_dot[a, c] * v[c]
+        e = -1
+        if elastic:
+            e = _move_elastic(p, i, v, w)
         _cross(w.lin[i], spatial[3:], tmp)
         _cross(pi, acc[3:], tmp2)
         r0 = p.cart_start[i]
         for a in range(3):  # (a generalised mode's row of Bdot v stays zero)
             w.bias[r0 + a] = -tmp[a] + acc[a] - tmp2[a]
             w.bias[r0 + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
+        if e >= 0:  # Bdot on a flexible body's own mode columns: R hat(w_b) Ct / m
+            _rotate(r, w.vec3, tmp)
+            for a in range(3):
+                w.bias[r0 + a] += tmp[a]
+
+
+@inline_kernel
+def _move_elastic(p: Plant, i: int, v: np.ndarray, w: Workspace) -> int:
+    """Body ``i``'s part of :func:`move` from the flexible bodies: the attachments' columns on its path into the
+    sum ``w.partial`` of v_c dS_c/dt; for a flexible body, the elastic part R Ct xi_dot / m of its centre of
+    mass's velocity into ``w.lin`` and w_b x Ct xi_dot / m (body axes; Bdot v on its own mode columns is R times
+    it) into ``w.vec3``. Returns the body's elastic index (-1 for a rigid body)."""
+    el = p.elastic
+    acc = w.partial
+    for att in range(el.child.shape[0]):
+        if el.on_path[i, att] == 0.0:
+            continue
+        e = el.of_body[el.parent[att]]
+        first = el.column[e]
+        for k in range(el.size[e]):
+            for a in range(6):
+                acc[a] += w.att_cols_dot[att, k, a] * v[first + k]
+    e = el.of_body[i]
+    if e >= 0:
+        u = w.vec2
+        first = el.column[e]
+        m = el.mass[e]
+        for a in range(3):
+            total = 0.0
+            for k in range(el.size[e]):
+                total += (el.coupling[e, a, k] / m) * v[first + k]
+            u[a] = total
+        _rotate(w.rot[i], u, w.vec)
+        for a in range(3):
+            w.lin[i, a] += w.vec[a]
+        _cross(w.omega[i], u, w.vec3)
+    return e
 
 
 @kernel
@@ -405,6 +561,34 @@ def _bdot(p: Plant, w: Workspace) -> np.ndarray:
             _cross(w.omega[i], rts, tmp)
             for a in range(3):
                 bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+        el = p.elastic
+        for att in range(el.child.shape[0]):  # the columns of elastic attachments on the body's path
+            if el.on_path[i, att] == 0.0:
+                continue
+            e = el.of_body[el.parent[att]]
+            for k in range(el.size[e]):
+                c = el.column[e] + k
+                s_att = w.att_cols[att, k]
+                sd_att = w.att_cols_dot[att, k]
+                _cross(w.lin[i], s_att[3:], tmp)
+                _cross(pi, sd_att[3:], tmp2)
+                for a in range(3):
+                    bdot[r0 + a, c] = -tmp[a] + sd_att[a] - tmp2[a]
+                for a in range(3):
+                    rts[a] = r[0, a] * s_att[3] + r[1, a] * s_att[4] + r[2, a] * s_att[5]
+                    rtsd[a] = r[0, a] * sd_att[3] + r[1, a] * sd_att[4] + r[2, a] * sd_att[5]
+                _cross(w.omega[i], rts, tmp)
+                for a in range(3):
+                    bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+        e = el.of_body[i]
+        if e >= 0:  # the body's own mode columns: R hat(w_b) Ct / m
+            for k in range(el.size[e]):
+                for a in range(3):
+                    rts[a] = el.coupling[e, a, k] / el.mass[e]
+                _cross(w.omega[i], rts, tmp)
+                _rotate(r, tmp, tmp2)
+                for a in range(3):
+                    bdot[r0 + a, el.column[e] + k] = tmp2[a]
     return bdot
 
 
@@ -532,8 +716,8 @@ def _hydrostatic_into(
     out: np.ndarray,
 ) -> None:
     """Gravity, buoyancy, the linear hydrostatic and mooring restoring force (world axes) and the modes' structural
-    stiffness into ``out`` (n_cart,) [N, N m, J] at configuration ``q`` (``disp`` and ``restoring`` (n_h,) and
-    ``rv`` (3,) are scratch)."""
+    stiffness (a flexible body's geometric stiffening with it) into ``out`` (n_cart,) [N, N m, J] at configuration
+    ``q`` (``disp`` and ``restoring`` (n_h,) and ``rv`` (3,) are scratch)."""
     hi = p.hydro_index
     for k in range(hi.shape[0]):
         i = p.cart_body[hi[k]]
@@ -556,6 +740,17 @@ def _hydrostatic_into(
         for j in range(modes.shape[0]):
             s += p.mode_stiffness[k, j] * q[p.cart_coordinate[modes[j]]]
         out[modes[k]] -= s
+    el = p.elastic
+    for e in range(el.body.shape[0]):  # geometric stiffening: -dU3/dxi, U3 = 1/2 sum G_mkl xi_m xi_k xi_l
+        first = el.coordinate[e]
+        row = el.row[e] + 6
+        n_e = el.size[e]
+        for j in range(n_e):
+            s = 0.0
+            for k in range(n_e):
+                for m in range(n_e):
+                    s += (el.geometric[e, k, j, m] + 0.5 * el.geometric[e, j, k, m]) * q[first + k] * q[first + m]
+            out[row + j] -= s
 
 
 @kernel
@@ -634,9 +829,107 @@ def configure_core(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w
     for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
         for c in range(w.bat.shape[0]):
             w.bat[c, k] = w.b[act[k], c]
-    # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of the
-    # tuples' arrays (measured, not understood); a call as the last statement costs only its own arguments' counts
-    return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
+    if p.elastic.body.shape[0] == 0:
+        # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of
+        # the tuples' arrays (measured, not understood); a call as the last statement costs only its own
+        # arguments' counts
+        return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
+    _elastic_mass(p, q, w)  # flexible bodies: M(xi) in place of M(0)
+    return _factor_mass(w.bat, w.active_mass, w.mass_work, w.mass, w.factor)
+
+
+@inline_kernel
+def _elastic_mass(p: Plant, q: np.ndarray, w: Workspace) -> None:
+    """Each flexible body's M(xi) and dM/dxi about its instantaneous centre of mass (``ElasticBody.relative_mass``)
+    into ``w.el_mass``, ``w.el_dmass``, and ``w.active_mass``: ``p.active_mass`` with M(xi) - M(0) added on their
+    active rotation and mode rows."""
+    el = p.elastic
+    sv, pm = w.vec, w.r_step
+    for e in range(el.body.shape[0]):
+        n_e = el.size[e]
+        first = el.coordinate[e]
+        m = el.mass[e]
+        ct = el.coupling[e]
+        out = w.el_mass[e]
+        d = w.el_dmass[e]
+        for a in range(3):  # s = s0 + Ct xi
+            total = el.first_moment[e, a]
+            for k in range(n_e):
+                total += ct[a, k] * q[first + k]
+            sv[a] = total
+        ss = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]
+        for a in range(3):  # P = P0 + sum_k xi_k (P1_k + P1_k') + sum_kl xi_k xi_l P2_kl
+            for b in range(3):
+                total = el.second_moment[e, a, b]
+                for k in range(n_e):
+                    xk = q[first + k]
+                    total += xk * (el.inertia_first[e, k, a, b] + el.inertia_first[e, k, b, a])
+                    for j in range(n_e):
+                        total += xk * q[first + j] * el.inertia_second[e, k, j, a, b]
+                pm[a, b] = total
+        trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
+        for a in range(3):  # J_c = tr(P) I - P - (|s|^2 I - s s') / m
+            for b in range(3):
+                eye = 1.0 if a == b else 0.0
+                out[a, b] = trace * eye - pm[a, b] - (ss * eye - sv[a] * sv[b]) / m
+        for k in range(n_e):  # C_c = Cr + sum_j xi_j G_jk - s x Ct_k / m
+            c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
+            x0 = sv[1] * c2 - sv[2] * c1
+            x1 = sv[2] * c0 - sv[0] * c2
+            x2 = sv[0] * c1 - sv[1] * c0
+            for a in range(3):
+                total = el.rotational[e, a, k]
+                for j in range(n_e):
+                    total += q[first + j] * el.gyroscopic[e, j, k, a]
+                out[a, 3 + k] = total - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
+                out[3 + k, a] = out[a, 3 + k]
+            for j in range(n_e):  # M_c = M_ee - Ct' Ct / m
+                out[3 + k, 3 + j] = el.modal_mass[e, k, j] - (c0 * ct[0, j] + c1 * ct[1, j] + c2 * ct[2, j]) / m
+        for a in range(3 + n_e):  # symmetric
+            for b in range(a + 1, 3 + n_e):
+                mean = 0.5 * (out[a, b] + out[b, a])
+                out[a, b] = mean
+                out[b, a] = mean
+        for k in range(n_e):  # dM/dxi_k
+            c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
+            sc = sv[0] * c0 + sv[1] * c1 + sv[2] * c2
+            for a in range(3):  # dP_k = P1_k + P1_k' + sum_l xi_l (P2_kl + P2_lk)
+                for b in range(3):
+                    total = el.inertia_first[e, k, a, b] + el.inertia_first[e, k, b, a]
+                    for j in range(n_e):
+                        total += q[first + j] * (el.inertia_second[e, j, k, a, b] + el.inertia_second[e, k, j, a, b])
+                    pm[a, b] = total
+            trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
+            for a in range(3):
+                ca = c0 if a == 0 else (c1 if a == 1 else c2)
+                sa = sv[a]
+                for b in range(3):
+                    eye = 1.0 if a == b else 0.0
+                    cb = c0 if b == 0 else (c1 if b == 1 else c2)
+                    d[k, a, b] = trace * eye - pm[a, b] - (2.0 * sc * eye - ca * sv[b] - sa * cb) / m
+            for j in range(n_e):  # G_k' - c x Ct_j / m
+                x0 = c1 * ct[2, j] - c2 * ct[1, j]
+                x1 = c2 * ct[0, j] - c0 * ct[2, j]
+                x2 = c0 * ct[1, j] - c1 * ct[0, j]
+                for a in range(3):
+                    value = el.gyroscopic[e, k, j, a] - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
+                    d[k, a, 3 + j] = value
+                    d[k, 3 + j, a] = value
+                for i in range(n_e):
+                    d[k, 3 + i, 3 + j] = 0.0
+    active = w.active_mass
+    for a in range(active.shape[0]):
+        for b in range(active.shape[1]):
+            active[a, b] = p.active_mass[a, b]
+    for e in range(el.body.shape[0]):
+        for a in range(3 + el.size[e]):
+            ka = el.active[e, a]
+            if ka < 0:
+                continue
+            for b in range(3 + el.size[e]):
+                kb = el.active[e, b]
+                if kb >= 0:
+                    active[ka, kb] += w.el_mass[e, a, b] - el.undeformed[e, a, b]
 
 
 @step_kernel
@@ -666,14 +959,22 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     act = p.active
     m = act.shape[0]
     # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows (none on the
-    # rows of generalised modes)
+    # rows of generalised modes); a flexible body's M(xi) and its quadratic-velocity vector instead
+    elastic = p.elastic.body.shape[0] > 0
+    mass = p.active_mass
+    if elastic:
+        mass = w.active_mass
+        _elastic_quadratic(p, v, w)
     for k in range(m):
         s = 0.0
         for j in range(m):
-            s += p.active_mass[k, j] * w.bias[act[j]]
+            s += mass[k, j] * w.bias[act[j]]
         row = act[k]
         axis = p.cart_axis[row]
-        if axis >= 3 and axis < 6:
+        if elastic and p.elastic.of_body[p.cart_body[row]] >= 0:
+            if axis >= 3:
+                s += w.quad[row]
+        elif axis >= 3 and axis < 6:
             i = p.cart_body[row]
             _rotate(p.inertia[i], w.omega[i], w.vec)
             _cross(w.omega[i], w.vec, w.vec2)
@@ -713,6 +1014,46 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
             gen[c] += w.gmat[k, c] * total
     respond_viscous(p.viscous, w.rot, w.lin, w.omega, w.b, p.cart_start, w.terms, gen)  # drag (none: no work)
     cholesky_solve(w.factor, gen, w.acc)
+
+
+@inline_kernel
+def _elastic_quadratic(p: Plant, v: np.ndarray, w: Workspace) -> None:
+    """The flexible bodies' quadratic-velocity vector on their rotation and mode rows, into ``w.quad``: with
+    Y = (w_b, xi_dot), w_b x (M(xi) Y)[:3] (D M) plus Mdot Y = sum_k xi_dot_k dM/dxi_k Y, and
+    -1/2 Y' dM/dxi_j Y on mode j's row (``wecss.multibody._dynamics``)."""
+    el = p.elastic
+    y, my = w.el_y, w.el_my
+    for e in range(el.body.shape[0]):
+        i = el.body[e]
+        n3 = 3 + el.size[e]
+        first = el.column[e]
+        for a in range(3):
+            y[a] = w.omega[i, a]
+        for k in range(el.size[e]):
+            y[3 + k] = v[first + k]
+        mass = w.el_mass[e]
+        d = w.el_dmass[e]
+        for a in range(3):
+            total = 0.0
+            for b in range(n3):
+                total += mass[a, b] * y[b]
+            my[a] = total
+        _cross(y, my, w.vec)  # (y[:3] is w_b)
+        r3 = el.row[e] + 3
+        for a in range(n3):
+            total = w.vec[a] if a < 3 else 0.0
+            for k in range(el.size[e]):
+                yk = y[3 + k]
+                for b in range(n3):
+                    total += yk * d[k, a, b] * y[b]
+            if a >= 3:
+                j = a - 3
+                half = 0.0
+                for b in range(n3):
+                    for c in range(n3):
+                        half += y[b] * d[j, b, c] * y[c]
+                total -= 0.5 * half
+            w.quad[r3 + a] = total
 
 
 @kernel
@@ -835,10 +1176,14 @@ def poses(p: Plant, qs: np.ndarray):
     joint_twists, com0 = p.twists, p.com0
     rot, trans, pos, cols, vec, vec2, t_step, r_step, r_new = w.rot, w.trans, w.pos, w.cols, w.vec, w.vec2, \
         w.t_step, w.r_step, w.r_new  # fmt: skip
+    el = p.elastic
+    of_body, of_child, el_size, el_coordinate, el_mass = el.of_body, el.of_child, el.size, el.coordinate, el.mass
+    el_first_moment, el_coupling, att_twists, att_cols = el.first_moment, el.coupling, el.twists, w.att_cols
     for t in range(n_t):  # the arrays, not the tuples, in the call (see _frames)
         _frames(
             order, parent, col_start, q_start, n_cols, free, joint_twists, com0, qs[t], rot, trans, pos, cols, vec,
-            vec2, t_step, r_step, r_new, False,
+            vec2, t_step, r_step, r_new, False, of_body, of_child, el_size, el_coordinate, el_mass, el_first_moment,
+            el_coupling, att_twists, att_cols,
         )  # fmt: skip
         for i in range(n):
             for a in range(3):
