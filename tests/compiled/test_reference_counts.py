@@ -9,12 +9,13 @@ import pytest
 
 from tests.sim.scenes import scene
 from wecss.compiled import JIT, compile_plant
-from wecss.compiled.kernels import configure, configure_core, respond, workspace
+from wecss.compiled.kernels import configure, configure_core, respond_core, workspace
 
-LIMITS = {"configure_core": 11, "respond": 3}
-"""``NRT_incref`` calls in the kernels' LLVM IR (measured: configure_core 11, respond 3). ``configure`` is
+LIMITS = {"configure_core": 11, "respond_core": 3}
+"""``NRT_incref`` calls in the kernels' LLVM IR (measured: configure_core 11, respond_core 3). ``configure`` is
 ``configure_core`` plus, only for plants with body-exact forces, a call of the mesh kernels (which pays its own
-arguments' counts: it cannot be inlined)."""
+arguments' counts: it cannot be inlined); ``respond`` is ``respond_core`` (plants with flexible bodies go
+through ``configure_elastic`` and ``respond_elastic`` instead)."""
 
 
 def _fresh(kernel):  # type: ignore[no-untyped-def]
@@ -30,9 +31,9 @@ def test_the_per_step_kernels_count_few_references():
     compiled = compile_plant(scene("m4-134"))
     p, w = compiled.plant, workspace(compiled.plant)
     configure(p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)  # (the real kernels first: numba imported)
-    fresh = {"configure_core": _fresh(configure_core), "respond": _fresh(respond)}
+    fresh = {"configure_core": _fresh(configure_core), "respond_core": _fresh(respond_core)}
     fresh["configure_core"](p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)
-    fresh["respond"](p, np.zeros(p.twists.shape[0]), compiled.radiation.newest, np.zeros(p.pto_kind.size), w)
+    fresh["respond_core"](p, np.zeros(p.twists.shape[0]), compiled.radiation.newest, np.zeros(p.pto_kind.size), w)
     for name, kernel in fresh.items():
         irs = list(kernel.inspect_llvm().values())
         assert irs and all("define" in ir for ir in irs), f"{name}: no LLVM IR to count in"

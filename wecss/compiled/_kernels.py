@@ -135,6 +135,13 @@ class Workspace(NamedTuple):
     Scratch: force (n_cart,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
     vec, vec2, t_step (3,), r_step, r_new (3, 3)
     Hydrodynamic terms beyond the linear database: terms (``wecss.compiled._viscous.TermsWork``)
+    Flexible bodies (``Plant.elastic``; empty without them)
+        att_cols, att_cols_dot (n_att, nm, 6): the world twists of the parent's mode columns on each elastic
+        attachment and their time derivatives (they differ between the children of one flexible body, so they are
+        kept per attachment, not in ``cols``); active_mass (m, m): ``Plant.active_mass`` with the flexible bodies'
+        M(xi) at the configuration; el_mass (n_el, 3 + nm, 3 + nm) M(xi), el_dmass (n_el, nm, 3 + nm, 3 + nm)
+        dM/dxi; quad (n_cart,) their quadratic-velocity vector (D M + Q) Y on the rotation and mode rows; scratch
+        el_y, el_my (3 + nm,), vec3 (3,)
     """
 
     rot: np.ndarray
@@ -172,6 +179,15 @@ class Workspace(NamedTuple):
     r_new: np.ndarray
     t_step: np.ndarray
     terms: TermsWork
+    att_cols: np.ndarray
+    att_cols_dot: np.ndarray
+    active_mass: np.ndarray
+    el_mass: np.ndarray
+    el_dmass: np.ndarray
+    el_y: np.ndarray
+    el_my: np.ndarray
+    quad: np.ndarray
+    vec3: np.ndarray
 
 
 @kernel
@@ -183,6 +199,9 @@ def workspace(p: Plant) -> Workspace:
     m = p.active.shape[0]
     n_h = p.hydro_index.shape[0]
     n_pto = p.pto_kind.shape[0]
+    n_el = p.elastic.body.shape[0]
+    nm = p.elastic.modal_mass.shape[1]
+    n_att = p.elastic.child.shape[0]
     return Workspace(
         np.zeros((n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((6, nv)), np.zeros((n_cart, nv)),
         np.zeros((nv, m)), np.zeros((n_h, nv)), np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros(nv),
@@ -192,19 +211,25 @@ def workspace(p: Plant) -> Workspace:
         np.zeros(n_cart), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
         np.zeros(6), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3),
         terms_work(p.viscous, n),
+        np.zeros((n_att, nm, 6)), np.zeros((n_att, nm, 6)), p.active_mass.copy(),
+        np.zeros((n_el, 3 + nm, 3 + nm)), np.zeros((n_el, nm, 3 + nm, 3 + nm)), np.zeros(3 + nm), np.zeros(3 + nm),
+        np.zeros(n_cart), np.zeros(3),
     )  # fmt: skip
 
 
 @inline_kernel
-def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
+def place(p: Plant, q: np.ndarray, w: Workspace, elastic: bool) -> None:
     """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w`` (a
-    generalised mode's row of B: the identity on its column)."""
+    generalised mode's row of B: the identity on its column); ``elastic``: the plant has flexible bodies (a
+    constant in the per-step kernels, so that the rigid ones compile without their code, see :func:`configure`)."""
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
     rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
+    el = p.elastic
     _frames(
         p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, p.com0, q, w.rot, w.trans, w.pos,
-        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True,
+        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True, elastic, el.of_body, el.of_child, el.size,
+        el.coordinate, el.mass, el.first_moment, el.coupling, el.twists, w.att_cols,
     )  # fmt: skip
     # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
     for i in range(n):
@@ -226,6 +251,49 @@ def place(p: Plant, q: np.ndarray, w: Workspace) -> None:
         for c in range(nv):
             b[row, c] = 0.0
         b[row, p.cart_column[row]] = 1.0
+    if elastic:
+        _place_elastic(
+            el.of_body, el.parent, el.size, el.column, el.mass, el.coupling, el.on_path, w.att_cols, w.rot, w.pos,
+            p.cart_start, b, tmp,
+        )  # fmt: skip
+
+
+@step_kernel
+def _place_elastic(
+    of_body: np.ndarray, att_parent: np.ndarray, size: np.ndarray, column: np.ndarray, mass: np.ndarray,
+    coupling: np.ndarray, on_path: np.ndarray, att_cols: np.ndarray, rot: np.ndarray, pos: np.ndarray,
+    cart_start: np.ndarray, b: np.ndarray, tmp: np.ndarray,
+) -> None:  # fmt: skip
+    """B's columns of the flexible bodies' modes (``wecss.multibody._kinematics``; the arrays as in
+    ``ElasticArrays`` and the Workspace): on the rigid rows of a body carried by an elastic attachment,
+    [[I, -hat(p)], [0, R']] times the attachment's twist; on the body's own translational rows, R Ct / m (its
+    centre of mass moves with the structure). (Not inlined: see :func:`_ride_attachment`.)"""
+    for i in range(rot.shape[0]):
+        r = rot[i]
+        pi = pos[i]
+        r0 = cart_start[i]
+        for att in range(att_parent.shape[0]):
+            if on_path[i, att] == 0.0:
+                continue
+            e = of_body[att_parent[att]]
+            for k in range(size[e]):
+                c = column[e] + k
+                s = att_cols[att, k]
+                _cross(pi, s[3:], tmp)
+                for a in range(3):
+                    b[r0 + a, c] = s[a] - tmp[a]
+                    b[r0 + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+        e = of_body[i]
+        if e >= 0:
+            m = mass[e]
+            for k in range(size[e]):
+                c = column[e] + k
+                for a in range(3):
+                    b[r0 + a, c] = (
+                        r[a, 0] * (coupling[e, 0, k] / m)
+                        + r[a, 1] * (coupling[e, 1, k] / m)
+                        + r[a, 2] * (coupling[e, 2, k] / m)
+                    )
 
 
 @inline_kernel
@@ -233,12 +301,18 @@ def _frames(
     order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, q_start: np.ndarray, n_cols: np.ndarray,
     free: np.ndarray, joint_twists: np.ndarray, com0: np.ndarray, q: np.ndarray, rot: np.ndarray, trans: np.ndarray,
     pos: np.ndarray, cols: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
-    r_new: np.ndarray, twists: bool,
+    r_new: np.ndarray, twists: bool, elastic: bool, of_body: np.ndarray, of_child: np.ndarray, el_size: np.ndarray,
+    el_coordinate: np.ndarray, el_mass: np.ndarray, el_first_moment: np.ndarray, el_coupling: np.ndarray,
+    att_twists: np.ndarray, att_cols: np.ndarray,
 ) -> None:  # fmt: skip
     """The bodies' frames rot, trans and CoM positions pos at configuration ``q``; with ``twists`` also the world
     twists of the joint columns, ``cols`` (the arrays as in Plant and Workspace). It takes the arrays, not the
     tuples: a call with the Plant and Workspace costs about 1 us (a reference count per array they hold), more than
-    the frames of a few bodies, and :func:`poses` calls it once per configuration."""
+    the frames of a few bodies, and :func:`poses` calls it once per configuration.
+
+    Flexible bodies (``Plant.elastic``): a joint on an elastic attachment of its parent rides on
+    prod_k exp(psi_k xi_k) of the attachment's twists (their world twists into ``att_cols`` with ``twists``); a
+    flexible body's centre of mass is c0 + (s0 + Ct xi) / m."""
     n = com0.shape[0]
     if twists:
         for a in range(6):
@@ -255,6 +329,11 @@ def _frames(
                 r[a, b] = rot[par, a, b] if par >= 0 else (1.0 if a == b else 0.0)
         iv = col_start[i]
         iq = q_start[i]
+        att = of_child[i] if elastic else -1
+        if att >= 0:  # on an elastic attachment of the parent
+            e = of_body[par]
+            _ride_attachment(att_twists, att, el_size[e], el_coordinate[e], q, r, t, att_cols, twists, tmp, tmp2,
+                             t_step, r_step, r_new)  # fmt: skip
         if free[i] == 1:
             _quat_matrix_into(q, iq + 3, r)
             _rotate(r, com0[i], tmp)
@@ -291,13 +370,62 @@ def _frames(
                 for a in range(3):
                     for b in range(3):
                         r[a, b] = r_new[a, b]
-        _rotate(r, com0[i], tmp)
+        e = of_body[i] if elastic else -1
+        if e >= 0:  # a flexible body's centre of mass moves with the structure
+            _elastic_centre(com0, i, e, el_size, el_coordinate, el_mass, el_first_moment, el_coupling, q, tmp2)
+            _rotate(r, tmp2, tmp)
+        else:
+            _rotate(r, com0[i], tmp)
         for a in range(3):
             pos[i, a] = tmp[a] + t[a]
 
 
+@step_kernel
+def _ride_attachment(
+    att_twists: np.ndarray, att: int, n: int, first: int, q: np.ndarray, r: np.ndarray, t: np.ndarray,
+    att_cols: np.ndarray, twists: bool, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
+    r_new: np.ndarray,
+) -> None:  # fmt: skip
+    """The frame (r, t) carried along elastic attachment ``att`` of a flexible body whose ``n`` modal coordinates
+    start at q[first]: G <- G prod_k exp(psi_k xi_k); with ``twists`` the world twists Ad(G) psi_k before each
+    factor into ``att_cols[att]``. (A kernel of its own, not inlined: the per-step kernels stay small enough for
+    numba to prune their reference counts, see ``_jit.inline_kernel``.)"""
+    for k in range(n):
+        psi = att_twists[att, k]
+        if twists:
+            _rotate(r, psi[3:], tmp)
+            _rotate(r, psi[:3], tmp2)
+            for a in range(3):
+                att_cols[att, k, 3 + a] = tmp[a]
+            _cross(t, tmp, t_step)
+            for a in range(3):
+                att_cols[att, k, a] = tmp2[a] + t_step[a]
+        _screw(psi, q[first + k], r_step, t_step)
+        _rotate(r, t_step, tmp)
+        for a in range(3):
+            t[a] += tmp[a]
+        _compose(r, r_step, r_new)
+        for a in range(3):
+            for b in range(3):
+                r[a, b] = r_new[a, b]
+
+
+@step_kernel
+def _elastic_centre(
+    com0: np.ndarray, i: int, e: int, el_size: np.ndarray, el_coordinate: np.ndarray, el_mass: np.ndarray,
+    el_first_moment: np.ndarray, el_coupling: np.ndarray, q: np.ndarray, out: np.ndarray,
+) -> None:  # fmt: skip
+    """The centre of mass c0 + (s0 + Ct xi) / m of body ``i``, flexible body ``e``, in its frame, into ``out``."""
+    first = el_coordinate[e]
+    for a in range(3):
+        moment = el_first_moment[e, a]
+        for k in range(el_size[e]):
+            moment += el_coupling[e, a, k] * q[first + k]
+        out[a] = com0[i, a] + moment / el_mass[e]
+
+
 @inline_kernel
-def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
+def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
     """The velocity part of the kinematics at the configuration in ``w`` (:func:`place`): spatial twists, dS/dt,
     body angular velocities, CoM velocities and Bdot v, into ``w``."""
     n = p.com0.shape[0]
@@ -337,6 +465,11 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
         else:
             for a in range(6):  # element loops: a slice assignment is a call (and allocates)
                 vel[a] = w.spatial[par, a] if par >= 0 else 0.0
+            att = p.elastic.of_child[i] if elastic else -1
+            if att >= 0:  # on an elastic attachment: the parent's mode columns come first
+                e = p.elastic.of_body[par]
+                _move_attachment(w.att_cols, w.att_cols_dot, att, p.elastic.size[e], p.elastic.column[e], v, vel,
+                                 tmp, tmp2)  # fmt: skip
             for k in range(p.n_cols[i]):
                 col = iv + k
                 s = cols[:, col]
@@ -369,12 +502,80 @@ def move(p: Plant, v: np.ndarray, w: Workspace) -> None:
             if p.chain[i, c] != 0.0:
                 for a in range(6):
                     acc[a] += cols_dot[a, c] * v[c]
+        e = -1
+        if elastic:
+            el = p.elastic
+            e = _move_elastic(
+                el.on_path, el.of_body, el.parent, el.size, el.column, el.mass, el.coupling, w.att_cols_dot, i, v,
+                acc, w.rot, w.omega, w.lin, tmp, tmp2, w.vec3,
+            )  # fmt: skip
         _cross(w.lin[i], spatial[3:], tmp)
         _cross(pi, acc[3:], tmp2)
         r0 = p.cart_start[i]
         for a in range(3):  # (a generalised mode's row of Bdot v stays zero)
             w.bias[r0 + a] = -tmp[a] + acc[a] - tmp2[a]
             w.bias[r0 + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
+        if e >= 0:  # Bdot on a flexible body's own mode columns: R hat(w_b) Ct / m
+            _rotate(r, w.vec3, tmp)
+            for a in range(3):
+                w.bias[r0 + a] += tmp[a]
+
+
+@step_kernel
+def _move_attachment(
+    att_cols: np.ndarray, att_cols_dot: np.ndarray, att: int, n: int, first: int, v: np.ndarray, vel: np.ndarray,
+    tmp: np.ndarray, tmp2: np.ndarray,
+) -> None:  # fmt: skip
+    """Along elastic attachment ``att`` (``n`` modal velocities from v[first]): dS/dt = [V, S] of each of its
+    columns into ``att_cols_dot[att]``, the spatial velocity ``vel`` advanced past it. (Not inlined: see
+    :func:`_ride_attachment`.)"""
+    for k in range(n):
+        s = att_cols[att, k]
+        sd = att_cols_dot[att, k]
+        _cross(vel[3:], s[:3], tmp)
+        _cross(s[3:], vel[:3], tmp2)
+        for a in range(3):
+            sd[a] = tmp[a] - tmp2[a]
+        _cross(vel[3:], s[3:], tmp)
+        for a in range(3):
+            sd[3 + a] = tmp[a]
+        for a in range(6):
+            vel[a] += s[a] * v[first + k]
+
+
+@step_kernel
+def _move_elastic(
+    on_path: np.ndarray, of_body: np.ndarray, att_parent: np.ndarray, size: np.ndarray, column: np.ndarray,
+    mass: np.ndarray, coupling: np.ndarray, att_cols_dot: np.ndarray, i: int, v: np.ndarray, acc: np.ndarray,
+    rot: np.ndarray, omega: np.ndarray, lin: np.ndarray, tmp: np.ndarray, u: np.ndarray, out: np.ndarray,
+) -> int:  # fmt: skip
+    """Body ``i``'s part of :func:`move` from the flexible bodies (the arrays as in ``ElasticArrays`` and the
+    Workspace): the attachments' columns on its path into the sum ``acc`` of v_c dS_c/dt; for a flexible body, the
+    elastic part R Ct xi_dot / m of its centre of mass's velocity into ``lin`` and w_b x Ct xi_dot / m (body axes;
+    Bdot v on its own mode columns is R times it) into ``out``. Returns the body's elastic index (-1 for a rigid
+    body). (Not inlined: see :func:`_ride_attachment`.)"""
+    for att in range(att_parent.shape[0]):
+        if on_path[i, att] == 0.0:
+            continue
+        e = of_body[att_parent[att]]
+        first = column[e]
+        for k in range(size[e]):
+            for a in range(6):
+                acc[a] += att_cols_dot[att, k, a] * v[first + k]
+    e = of_body[i]
+    if e >= 0:
+        first = column[e]
+        m = mass[e]
+        for a in range(3):
+            total = 0.0
+            for k in range(size[e]):
+                total += (coupling[e, a, k] / m) * v[first + k]
+            u[a] = total
+        _rotate(rot[i], u, tmp)
+        for a in range(3):
+            lin[i, a] += tmp[a]
+        _cross(omega[i], u, out)
+    return e
 
 
 @kernel
@@ -405,6 +606,34 @@ def _bdot(p: Plant, w: Workspace) -> np.ndarray:
             _cross(w.omega[i], rts, tmp)
             for a in range(3):
                 bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+        el = p.elastic
+        for att in range(el.child.shape[0]):  # the columns of elastic attachments on the body's path
+            if el.on_path[i, att] == 0.0:
+                continue
+            e = el.of_body[el.parent[att]]
+            for k in range(el.size[e]):
+                c = el.column[e] + k
+                s_att = w.att_cols[att, k]
+                sd_att = w.att_cols_dot[att, k]
+                _cross(w.lin[i], s_att[3:], tmp)
+                _cross(pi, sd_att[3:], tmp2)
+                for a in range(3):
+                    bdot[r0 + a, c] = -tmp[a] + sd_att[a] - tmp2[a]
+                for a in range(3):
+                    rts[a] = r[0, a] * s_att[3] + r[1, a] * s_att[4] + r[2, a] * s_att[5]
+                    rtsd[a] = r[0, a] * sd_att[3] + r[1, a] * sd_att[4] + r[2, a] * sd_att[5]
+                _cross(w.omega[i], rts, tmp)
+                for a in range(3):
+                    bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+        e = el.of_body[i]
+        if e >= 0:  # the body's own mode columns: R hat(w_b) Ct / m
+            for k in range(el.size[e]):
+                for a in range(3):
+                    rts[a] = el.coupling[e, a, k] / el.mass[e]
+                _cross(w.omega[i], rts, tmp)
+                _rotate(r, tmp, tmp2)
+                for a in range(3):
+                    bdot[r0 + a, el.column[e] + k] = tmp2[a]
     return bdot
 
 
@@ -413,8 +642,9 @@ def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
     """Rotations (n, 3, 3), CoM positions (n, 3), B (n_cart, nv), Bdot (n_cart, nv) and body angular velocities
     (n, 3)."""
     w = workspace(p)
-    place(p, q, w)
-    move(p, v, w)
+    elastic = p.elastic.body.shape[0] > 0
+    place(p, q, w, elastic)
+    move(p, v, w, elastic)
     return w.rot, w.pos, w.b, _bdot(p, w), w.omega
 
 
@@ -530,10 +760,11 @@ def _hydrostatic_into(
     restoring: np.ndarray,
     rv: np.ndarray,
     out: np.ndarray,
+    elastic: bool,
 ) -> None:
     """Gravity, buoyancy, the linear hydrostatic and mooring restoring force (world axes) and the modes' structural
-    stiffness into ``out`` (n_cart,) [N, N m, J] at configuration ``q`` (``disp`` and ``restoring`` (n_h,) and
-    ``rv`` (3,) are scratch)."""
+    stiffness (a flexible body's geometric stiffening with it) into ``out`` (n_cart,) [N, N m, J] at configuration
+    ``q`` (``disp`` and ``restoring`` (n_h,) and ``rv`` (3,) are scratch)."""
     hi = p.hydro_index
     for k in range(hi.shape[0]):
         i = p.cart_body[hi[k]]
@@ -556,6 +787,27 @@ def _hydrostatic_into(
         for j in range(modes.shape[0]):
             s += p.mode_stiffness[k, j] * q[p.cart_coordinate[modes[j]]]
         out[modes[k]] -= s
+    el = p.elastic
+    if elastic:
+        _geometric_into(el.size, el.coordinate, el.row, el.geometric, q, out)
+
+
+@step_kernel
+def _geometric_into(
+    size: np.ndarray, coordinate: np.ndarray, row: np.ndarray, geometric: np.ndarray, q: np.ndarray, out: np.ndarray
+) -> None:
+    """The flexible bodies' geometric stiffening -dU3/dxi, U3 = 1/2 sum G_mkl xi_m xi_k xi_l, added to their mode
+    rows of ``out`` (``ElasticArrays``; not inlined: see :func:`_ride_attachment`)."""
+    for e in range(size.shape[0]):
+        first = coordinate[e]
+        r6 = row[e] + 6
+        n_e = size[e]
+        for j in range(n_e):
+            s = 0.0
+            for k in range(n_e):
+                for m in range(n_e):
+                    s += (geometric[e, k, j, m] + 0.5 * geometric[e, j, k, m]) * q[first + k] * q[first + m]
+            out[r6 + j] -= s
 
 
 @kernel
@@ -564,7 +816,7 @@ def hydrostatic_force(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray)
     (n_cart,) [N, N m, J] at configuration ``q`` (with its frames ``rot``, ``pos``)."""
     n_h = p.hydro_index.shape[0]
     out = np.empty(p.static_force.shape[0])
-    _hydrostatic_into(p, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out)
+    _hydrostatic_into(p, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out, p.elastic.body.shape[0] > 0)
     return out
 
 
@@ -589,8 +841,16 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Wor
     alone, into ``w``: :func:`configure_core`, then the body-exact pressure forces when the plant has them
     (``wecss.compiled._body_exact``: a call of its own, which numba cannot inline; the mesh kernels are large and
     an opaque call inside ``configure_core`` would keep numba from pruning its reference counts). Returns False
-    when M* is not positive definite (a degenerate configuration)."""
-    if not configure_core(p, q, hydro_force, t, w):
+    when M* is not positive definite (a degenerate configuration).
+
+    A plant with flexible bodies (``Plant.elastic``) goes through :func:`configure_elastic` instead: the same
+    kernel compiled with their code, which the rigid one is compiled without (a constant flag through the inlined
+    helpers; their loops would keep numba from pruning the rigid kernel's reference counts)."""
+    if p.elastic.body.shape[0] == 0:
+        ok = configure_core(p, q, hydro_force, t, w)
+    else:
+        ok = configure_elastic(p, q, hydro_force, t, w)
+    if not ok:
         return False
     if p.pressure.owner.shape[0] > 0:
         configure_pressure(p.pressure, t, w.rot, w.pos, p.com0, p.cart_start, w.b, w.terms, w.gen_config)
@@ -607,14 +867,30 @@ def configure_core(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w
     (``wecss.compiled._viscous``), the PTO strokes and transmissions. Within a step of a predictor-corrector only
     the velocity changes: :func:`respond` then reuses all of this.
 
-    Returns False when M* is not positive definite (a degenerate configuration).
+    Returns False when M* is not positive definite (a degenerate configuration). For a plant without flexible
+    bodies (:func:`configure_elastic` for the others).
     """
-    place(p, q, w)
+    return _configure_body(p, q, hydro_force, t, w, False)
+
+
+@step_kernel
+def configure_elastic(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace) -> bool:
+    """:func:`configure_core` for a plant with flexible bodies: their centres of mass, attachments and mode
+    columns in the kinematics, their geometric stiffening, and M* from their M(xi)."""
+    return _configure_body(p, q, hydro_force, t, w, True)
+
+
+@inline_kernel
+def _configure_body(
+    p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace, elastic: bool
+) -> bool:  # fmt: skip
+    """The body of :func:`configure_core` (``elastic`` False) and :func:`configure_elastic` (True)."""
+    place(p, q, w, elastic)
     _hydro_jacobian(p, w)
     # world loads: gravity, buoyancy, hydrostatics and the given hydro force; through Bw, that is B with the
     # moments in body axes
     force = w.force
-    _hydrostatic_into(p, q, w.rot, w.pos, w.disp, w.restoring, w.vec, force)
+    _hydrostatic_into(p, q, w.rot, w.pos, w.disp, w.restoring, w.vec, force, elastic)
     hi = p.hydro_index
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
@@ -634,9 +910,116 @@ def configure_core(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w
     for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
         for c in range(w.bat.shape[0]):
             w.bat[c, k] = w.b[act[k], c]
-    # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of the
-    # tuples' arrays (measured, not understood); a call as the last statement costs only its own arguments' counts
-    return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
+    if not elastic:
+        # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of
+        # the tuples' arrays (measured, not understood); a call as the last statement costs only its own
+        # arguments' counts
+        return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
+    el = p.elastic  # flexible bodies: M(xi) in place of M(0)
+    _elastic_mass(
+        el.size, el.coordinate, el.mass, el.first_moment, el.coupling, el.rotational, el.second_moment,
+        el.inertia_first, el.inertia_second, el.gyroscopic, el.modal_mass, el.undeformed, el.active, q,
+        p.active_mass, w.active_mass, w.el_mass, w.el_dmass, w.vec, w.r_step,
+    )  # fmt: skip
+    return _factor_mass(w.bat, w.active_mass, w.mass_work, w.mass, w.factor)
+
+
+@step_kernel
+def _elastic_mass(
+    size: np.ndarray, coordinate: np.ndarray, mass: np.ndarray, first_moment: np.ndarray, coupling: np.ndarray,
+    rotational: np.ndarray, second_moment: np.ndarray, inertia_first: np.ndarray, inertia_second: np.ndarray,
+    gyroscopic: np.ndarray, modal_mass: np.ndarray, undeformed: np.ndarray, active_rows: np.ndarray, q: np.ndarray,
+    plant_active_mass: np.ndarray, active: np.ndarray, el_mass: np.ndarray, el_dmass: np.ndarray, sv: np.ndarray,
+    pm: np.ndarray,
+) -> None:  # fmt: skip
+    """Each flexible body's M(xi) and dM/dxi about its instantaneous centre of mass (``ElasticBody.relative_mass``)
+    into ``el_mass``, ``el_dmass``, and into ``active``: ``plant_active_mass`` with M(xi) - M(0) added on their
+    active rotation and mode rows (the arrays as in ``ElasticArrays`` and the Workspace; ``sv`` (3,) and ``pm``
+    (3, 3) are scratch; not inlined: see :func:`_ride_attachment`)."""
+    for e in range(size.shape[0]):
+        n_e = size[e]
+        first = coordinate[e]
+        m = mass[e]
+        ct = coupling[e]
+        out = el_mass[e]
+        d = el_dmass[e]
+        for a in range(3):  # s = s0 + Ct xi
+            total = first_moment[e, a]
+            for k in range(n_e):
+                total += ct[a, k] * q[first + k]
+            sv[a] = total
+        ss = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]
+        for a in range(3):  # P = P0 + sum_k xi_k (P1_k + P1_k') + sum_kl xi_k xi_l P2_kl
+            for b in range(3):
+                total = second_moment[e, a, b]
+                for k in range(n_e):
+                    xk = q[first + k]
+                    total += xk * (inertia_first[e, k, a, b] + inertia_first[e, k, b, a])
+                    for j in range(n_e):
+                        total += xk * q[first + j] * inertia_second[e, k, j, a, b]
+                pm[a, b] = total
+        trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
+        for a in range(3):  # J_c = tr(P) I - P - (|s|^2 I - s s') / m
+            for b in range(3):
+                eye = 1.0 if a == b else 0.0
+                out[a, b] = trace * eye - pm[a, b] - (ss * eye - sv[a] * sv[b]) / m
+        for k in range(n_e):  # C_c = Cr + sum_j xi_j G_jk - s x Ct_k / m
+            c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
+            x0 = sv[1] * c2 - sv[2] * c1
+            x1 = sv[2] * c0 - sv[0] * c2
+            x2 = sv[0] * c1 - sv[1] * c0
+            for a in range(3):
+                total = rotational[e, a, k]
+                for j in range(n_e):
+                    total += q[first + j] * gyroscopic[e, j, k, a]
+                out[a, 3 + k] = total - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
+                out[3 + k, a] = out[a, 3 + k]
+            for j in range(n_e):  # M_c = M_ee - Ct' Ct / m
+                out[3 + k, 3 + j] = modal_mass[e, k, j] - (c0 * ct[0, j] + c1 * ct[1, j] + c2 * ct[2, j]) / m
+        for a in range(3 + n_e):  # symmetric
+            for b in range(a + 1, 3 + n_e):
+                mean = 0.5 * (out[a, b] + out[b, a])
+                out[a, b] = mean
+                out[b, a] = mean
+        for k in range(n_e):  # dM/dxi_k
+            c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
+            sc = sv[0] * c0 + sv[1] * c1 + sv[2] * c2
+            for a in range(3):  # dP_k = P1_k + P1_k' + sum_l xi_l (P2_kl + P2_lk)
+                for b in range(3):
+                    total = inertia_first[e, k, a, b] + inertia_first[e, k, b, a]
+                    for j in range(n_e):
+                        total += q[first + j] * (inertia_second[e, j, k, a, b] + inertia_second[e, k, j, a, b])
+                    pm[a, b] = total
+            trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
+            for a in range(3):
+                ca = c0 if a == 0 else (c1 if a == 1 else c2)
+                sa = sv[a]
+                for b in range(3):
+                    eye = 1.0 if a == b else 0.0
+                    cb = c0 if b == 0 else (c1 if b == 1 else c2)
+                    d[k, a, b] = trace * eye - pm[a, b] - (2.0 * sc * eye - ca * sv[b] - sa * cb) / m
+            for j in range(n_e):  # G_k' - c x Ct_j / m
+                x0 = c1 * ct[2, j] - c2 * ct[1, j]
+                x1 = c2 * ct[0, j] - c0 * ct[2, j]
+                x2 = c0 * ct[1, j] - c1 * ct[0, j]
+                for a in range(3):
+                    value = gyroscopic[e, k, j, a] - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
+                    d[k, a, 3 + j] = value
+                    d[k, 3 + j, a] = value
+                for i in range(n_e):
+                    d[k, 3 + i, 3 + j] = 0.0
+    for a in range(active.shape[0]):
+        for b in range(active.shape[1]):
+            active[a, b] = plant_active_mass[a, b]
+    for e in range(size.shape[0]):
+        for a in range(3 + size[e]):
+            ka = active_rows[e, a]
+            if ka < 0:
+                continue
+            for b in range(3 + size[e]):
+                kb = active_rows[e, b]
+                if kb >= 0:
+                    active[ka, kb] += el_mass[e, a, b] - undeformed[e, a, b]
 
 
 @step_kernel
@@ -649,8 +1032,33 @@ def _factor_mass(
     return cholesky(mass, factor)
 
 
-@step_kernel
+@inline_kernel
 def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace) -> None:
+    """Generalised accelerations at the velocities ``v`` and the configuration in ``w`` (:func:`configure`), into
+    ``w.acc``, and the hydro velocities, PTO rates and forces: :func:`respond_core`, or :func:`respond_elastic` for
+    a plant with flexible bodies (see :func:`configure`)."""
+    if p.elastic.body.shape[0] == 0:
+        respond_core(p, v, newest, command, w)
+    else:
+        respond_elastic(p, v, newest, command, w)
+
+
+@step_kernel
+def respond_core(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace) -> None:
+    """:func:`respond` for a plant without flexible bodies."""
+    _respond_body(p, v, newest, command, w, False)
+
+
+@step_kernel
+def respond_elastic(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace) -> None:
+    """:func:`respond` for a plant with flexible bodies: their M(xi) and quadratic-velocity terms."""
+    _respond_body(p, v, newest, command, w, True)
+
+
+@inline_kernel
+def _respond_body(
+    p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w: Workspace, elastic: bool
+) -> None:  # fmt: skip
     """Generalised accelerations at the velocities ``v`` and the configuration in ``w`` (:func:`configure`), into
     ``w.acc``; also the hydro velocities ``w.u``, the PTO rates ``w.xdot`` and forces ``w.f`` (the controller's,
     saturated at the force limit, plus the device spring; the end stops act besides).
@@ -662,12 +1070,18 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     command : (n_pto,)
         Controller force held over the step [N or N m] (added to the device spring and the linear gains).
     """
-    move(p, v, w)
+    move(p, v, w, elastic)
     act = p.active
     m = act.shape[0]
     # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows (none on the
-    # rows of generalised modes)
-    for k in range(m):
+    # rows of generalised modes); a flexible body's M(xi) and its quadratic-velocity vector instead
+    if elastic:
+        el = p.elastic
+        _elastic_inertial(
+            el.of_body, el.body, el.size, el.column, el.row, act, w.active_mass, w.bias, p.cart_axis, p.cart_body,
+            p.inertia, w.omega, v, w.el_mass, w.el_dmass, w.el_y, w.el_my, w.vec, w.vec2, w.quad, w.inertial,
+        )  # fmt: skip
+    for k in range(0 if elastic else m):
         s = 0.0
         for j in range(m):
             s += p.active_mass[k, j] * w.bias[act[j]]
@@ -715,6 +1129,68 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     cholesky_solve(w.factor, gen, w.acc)
 
 
+@step_kernel
+def _elastic_inertial(
+    of_body: np.ndarray, body: np.ndarray, size: np.ndarray, column: np.ndarray, row: np.ndarray, act: np.ndarray,
+    active_mass: np.ndarray, bias: np.ndarray, cart_axis: np.ndarray, cart_body: np.ndarray, inertia: np.ndarray,
+    omega: np.ndarray, v: np.ndarray, el_mass: np.ndarray, el_dmass: np.ndarray, y: np.ndarray, my: np.ndarray,
+    tmp: np.ndarray, tmp2: np.ndarray, quad: np.ndarray, inertial: np.ndarray,
+) -> None:  # fmt: skip
+    """:func:`respond`'s -((M + A_inf) Bdot v + H B v) on the active rows, into ``inertial``, for a plant with
+    flexible bodies (the arrays as in the Plant, ``ElasticArrays`` and the Workspace): ``active_mass`` holds their
+    M(xi); on a rigid body's rotation rows H B v = w_b x J w_b, on a flexible body's rotation and mode rows its
+    quadratic-velocity vector (into ``quad``): with Y = (w_b, xi_dot), w_b x (M(xi) Y)[:3] (D M) plus
+    Mdot Y = sum_k xi_dot_k dM/dxi_k Y, and -1/2 Y' dM/dxi_j Y on mode j's row (``wecss.multibody._dynamics``).
+    (Not inlined: see :func:`_ride_attachment`.)"""
+    for e in range(body.shape[0]):
+        i = body[e]
+        n3 = 3 + size[e]
+        first = column[e]
+        for a in range(3):
+            y[a] = omega[i, a]
+        for k in range(size[e]):
+            y[3 + k] = v[first + k]
+        mass = el_mass[e]
+        d = el_dmass[e]
+        for a in range(3):
+            total = 0.0
+            for b in range(n3):
+                total += mass[a, b] * y[b]
+            my[a] = total
+        _cross(y, my, tmp)  # (y[:3] is w_b)
+        r3 = row[e] + 3
+        for a in range(n3):
+            total = tmp[a] if a < 3 else 0.0
+            for k in range(size[e]):
+                yk = y[3 + k]
+                for b in range(n3):
+                    total += yk * d[k, a, b] * y[b]
+            if a >= 3:
+                j = a - 3
+                half = 0.0
+                for b in range(n3):
+                    for c in range(n3):
+                        half += y[b] * d[j, b, c] * y[c]
+                total -= 0.5 * half
+            quad[r3 + a] = total
+    m = act.shape[0]
+    for k in range(m):
+        s = 0.0
+        for j in range(m):
+            s += active_mass[k, j] * bias[act[j]]
+        r = act[k]
+        axis = cart_axis[r]
+        i = cart_body[r]
+        if of_body[i] >= 0:
+            if axis >= 3:
+                s += quad[r]
+        elif axis >= 3 and axis < 6:
+            _rotate(inertia[i], omega[i], tmp)
+            _cross(omega[i], tmp, tmp2)
+            s += tmp2[axis - 3]
+        inertial[k] = -s
+
+
 @kernel
 def accelerations(
     p: Plant,
@@ -757,7 +1233,7 @@ def accelerations(
 def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Velocities of the hydro DOFs (world axes) [m/s, rad/s]."""
     w = workspace(p)
-    place(p, q, w)
+    place(p, q, w, p.elastic.body.shape[0] > 0)
     _hydro_jacobian(p, w)
     matvec(w.bh, v, w.u)
     return w.u
@@ -835,10 +1311,15 @@ def poses(p: Plant, qs: np.ndarray):
     joint_twists, com0 = p.twists, p.com0
     rot, trans, pos, cols, vec, vec2, t_step, r_step, r_new = w.rot, w.trans, w.pos, w.cols, w.vec, w.vec2, \
         w.t_step, w.r_step, w.r_new  # fmt: skip
+    el = p.elastic
+    elastic = el.body.shape[0] > 0
+    of_body, of_child, el_size, el_coordinate, el_mass = el.of_body, el.of_child, el.size, el.coordinate, el.mass
+    el_first_moment, el_coupling, att_twists, att_cols = el.first_moment, el.coupling, el.twists, w.att_cols
     for t in range(n_t):  # the arrays, not the tuples, in the call (see _frames)
         _frames(
             order, parent, col_start, q_start, n_cols, free, joint_twists, com0, qs[t], rot, trans, pos, cols, vec,
-            vec2, t_step, r_step, r_new, False,
+            vec2, t_step, r_step, r_new, False, elastic, of_body, of_child, el_size, el_coordinate, el_mass,
+            el_first_moment, el_coupling, att_twists, att_cols,
         )  # fmt: skip
         for i in range(n):
             for a in range(3):

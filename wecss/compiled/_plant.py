@@ -86,6 +86,11 @@ class Plant(NamedTuple):
         incident wave they see; empty arrays when the scene asks for none); pressure:
         ``wecss.compiled._body_exact.PressureArrays`` (the body-exact hydrostatic and Froude-Krylov forces on the
         bodies' meshes; none when the scene asks for none)
+    Flexible bodies
+        elastic : :class:`ElasticArrays` (empty arrays for a device of rigid bodies and generalised modes alone):
+        their mass block M(xi) about the instantaneous centre of mass replaces the rigid one on their rotation and
+        mode rows (so M* is rebuilt per configuration from ``active_mass`` plus M(xi) - M(0)), their centre of
+        mass moves with the modes, and the children on their elastic attachments move with the modes' columns
     """
 
     order: np.ndarray
@@ -134,6 +139,147 @@ class Plant(NamedTuple):
     mooring_damping: np.ndarray
     viscous: ViscousArrays
     pressure: PressureArrays
+    elastic: ElasticArrays
+
+
+class ElasticArrays(NamedTuple):
+    """The flexible bodies of a plant (``Body.elastic``, floating frame: ``wecss.multibody._elastic``) as padded
+    arrays; all empty (first dimension 0) for a plant without them, whose kernels then never read them. ``n_el``
+    flexible bodies with at most ``nm`` modal coordinates each, ``n_att`` elastic attachments carrying a child.
+
+    Flexible bodies
+        of_body : (n_body,) index of a body's elastic model, -1 for a rigid body; body : (n_el,) its body
+        size : (n_el,) number of modal coordinates; column, coordinate : (n_el,) the first one's generalised
+        velocity and coordinate (the others follow); row : (n_el,) the body's first Cartesian row
+        mass : (n_el,) [kg]; first_moment : (n_el, 3) s0 about the undeformed centre of mass [kg m]
+        coupling : (n_el, 3, nm) Ct [kg m]; rotational : (n_el, 3, nm) Cr [kg m^2]
+        second_moment : (n_el, 3, 3) P0; inertia_first : (n_el, nm, 3, 3) P1; inertia_second : (n_el, nm, nm, 3, 3)
+        P2; gyroscopic : (n_el, nm, nm, 3) G; modal_mass : (n_el, nm, nm) [kg m^2] (``wecss.structure.Invariants``)
+        geometric : (n_el, nm, nm, nm) the geometric stiffening tensor [N m] (zero without one)
+        undeformed : (n_el, 3 + nm, 3 + nm) M(0), the block of ``rigid_mass`` on the rotation and mode rows
+        active : (n_el, 3 + nm) position of each of those rows among the plant's ``active`` rows, -1 if inactive
+    Elastic attachments (a child joint on its flexible parent's attachment of the same name)
+        of_child : (n_body,) the attachment a body's joint rides on, -1 for none; child, parent : (n_att,) the bodies
+        twists : (n_att, nm, 6) the attachment's twists psi_k (world axes at the reference configuration)
+        on_path : (n_body, n_att) 1 where the attachment is on a body's path to the ground (the body or an ancestor
+        is its child): the parent's mode columns then move the body
+    """
+
+    of_body: np.ndarray
+    body: np.ndarray
+    size: np.ndarray
+    column: np.ndarray
+    coordinate: np.ndarray
+    row: np.ndarray
+    mass: np.ndarray
+    first_moment: np.ndarray
+    coupling: np.ndarray
+    rotational: np.ndarray
+    second_moment: np.ndarray
+    inertia_first: np.ndarray
+    inertia_second: np.ndarray
+    gyroscopic: np.ndarray
+    modal_mass: np.ndarray
+    geometric: np.ndarray
+    undeformed: np.ndarray
+    active: np.ndarray
+    of_child: np.ndarray
+    child: np.ndarray
+    parent: np.ndarray
+    twists: np.ndarray
+    on_path: np.ndarray
+
+
+def elastic_arrays(model: Multibody, active: np.ndarray) -> ElasticArrays:
+    """The :class:`ElasticArrays` of ``model`` (``active``: the plant's active Cartesian rows)."""
+    n = len(model.bodies)
+    bodies = list(model.elastic_bodies)
+    n_el = len(bodies)
+    nm = max([model.bodies[i].modes.n for i in bodies], default=0)
+    of_body = np.full(n, -1, dtype=np.int64)
+    size = np.zeros(n_el, dtype=np.int64)
+    column = np.zeros(n_el, dtype=np.int64)
+    coordinate = np.zeros(n_el, dtype=np.int64)
+    row = np.zeros(n_el, dtype=np.int64)
+    mass = np.zeros(n_el)
+    first_moment = np.zeros((n_el, 3))
+    coupling = np.zeros((n_el, 3, nm))
+    rotational = np.zeros((n_el, 3, nm))
+    second_moment = np.zeros((n_el, 3, 3))
+    inertia_first = np.zeros((n_el, nm, 3, 3))
+    inertia_second = np.zeros((n_el, nm, nm, 3, 3))
+    gyroscopic = np.zeros((n_el, nm, nm, 3))
+    modal_mass = np.zeros((n_el, nm, nm))
+    geometric = np.zeros((n_el, nm, nm, nm))
+    undeformed = np.zeros((n_el, 3 + nm, 3 + nm))
+    position = np.full(model.n_cart, -1, dtype=np.int64)
+    position[active] = np.arange(active.size)
+    active_rows = np.full((n_el, 3 + nm), -1, dtype=np.int64)
+    for e, i in enumerate(bodies):
+        el = model.bodies[i].elastic
+        assert el is not None
+        inv, k = el.invariants, el.n
+        of_body[i] = e
+        size[e], column[e], coordinate[e] = k, model.mode_velocity_start[i], model.mode_coordinate_start[i]
+        row[e] = model.cart_start[i]
+        mass[e], first_moment[e] = inv.mass, inv.first_moment
+        coupling[e, :, :k], rotational[e, :, :k] = inv.translational_coupling, inv.rotational_coupling
+        second_moment[e] = inv.second_moment
+        inertia_first[e, :k] = inv.inertia_first
+        inertia_second[e, :k, :k] = inv.inertia_second
+        gyroscopic[e, :k, :k] = inv.gyroscopic
+        modal_mass[e, :k, :k] = inv.modal_mass
+        if el.geometric is not None:
+            geometric[e, :k, :k, :k] = el.geometric
+        undeformed[e, : 3 + k, : 3 + k] = el.relative_mass(np.zeros(k))[0]
+        active_rows[e, : 3 + k] = position[model.cart_start[i] + 3 : model.cart_start[i] + 6 + k]
+    attached = [
+        i
+        for i in model.order
+        if model.parent[i] >= 0
+        and (el := model.bodies[model.parent[i]].elastic) is not None
+        and model.joints[model.joint_of[i]].name in el.attachments
+    ]
+    n_att = len(attached)
+    of_child = np.full(n, -1, dtype=np.int64)
+    twists = np.zeros((n_att, nm, 6))
+    on_path = np.zeros((n, n_att))
+    for a, i in enumerate(attached):
+        par = model.parent[i]
+        el = model.bodies[par].elastic
+        assert el is not None
+        of_child[i] = a
+        twists[a, : el.n] = el.attachment(model.joints[model.joint_of[i]].name).twists
+    for i in model.order:  # parents first: a body inherits its parent's path
+        if model.parent[i] >= 0:
+            on_path[i] = on_path[model.parent[i]]
+        if of_child[i] >= 0:
+            on_path[i, of_child[i]] = 1.0
+    return ElasticArrays(
+        of_body=of_body,
+        body=np.asarray(bodies, dtype=np.int64),
+        size=size,
+        column=column,
+        coordinate=coordinate,
+        row=row,
+        mass=mass,
+        first_moment=first_moment,
+        coupling=coupling,
+        rotational=rotational,
+        second_moment=second_moment,
+        inertia_first=inertia_first,
+        inertia_second=inertia_second,
+        gyroscopic=gyroscopic,
+        modal_mass=modal_mass,
+        geometric=geometric,
+        undeformed=undeformed,
+        active=active_rows,
+        of_child=of_child,
+        child=np.asarray(attached, dtype=np.int64),
+        parent=np.asarray([model.parent[i] for i in attached], dtype=np.int64),
+        twists=twists,
+        on_path=on_path,
+    )
 
 
 def _tree_arrays(model: Multibody) -> dict[str, np.ndarray]:
@@ -313,6 +459,7 @@ def build_plant(
         mooring_damping=np.ascontiguousarray(mooring_h),
         viscous=no_viscous() if viscous is None else viscous,
         pressure=no_pressure() if pressure is None else pressure,
+        elastic=elastic_arrays(model, active),
     )
 
 

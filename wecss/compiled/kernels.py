@@ -19,6 +19,7 @@ from ._kernels import accelerations as accelerations
 from ._kernels import configuration_rate as configuration_rate
 from ._kernels import configure as configure
 from ._kernels import configure_core as configure_core
+from ._kernels import configure_elastic as configure_elastic
 from ._kernels import end_stop_force as end_stop_force
 from ._kernels import hydro_velocity as hydro_velocity
 from ._kernels import hydrostatic_force as hydrostatic_force
@@ -28,6 +29,8 @@ from ._kernels import normalise_quaternions as normalise_quaternions
 from ._kernels import poses as poses
 from ._kernels import pto_strokes as pto_strokes
 from ._kernels import respond as respond
+from ._kernels import respond_core as respond_core
+from ._kernels import respond_elastic as respond_elastic
 from ._kernels import workspace as workspace
 from ._kernels import world_jacobian as world_jacobian
 from ._linalg import cholesky as cholesky
