@@ -1,6 +1,6 @@
 """A device's flexible body in the equations of motion (``flexible.dynamics = "elastic"``): the elastic model of the
 NOTC arm (its mass from the structure, its children on its nodes), the refusals (a wetted elastic body, the
-time-domain runs that do not carry elastic modes yet, bad spec values), and the arm's static sag under its own
+rigid model's methods until the device carries its modes, bad spec values), and the arm's static sag under its own
 weight in the multibody equations against the finite-element solution of the same structure."""
 
 from __future__ import annotations
@@ -58,13 +58,24 @@ def test_spec_values_of_the_dynamics_are_checked() -> None:
         Flexible.from_spec("here", {"geometric_stiffness": 1})
 
 
-def test_a_run_of_an_elastic_device_is_refused_with_what_to_do(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_a_run_of_a_wetted_elastic_device_is_refused_with_what_to_do(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     from wecss.compiled import _compile
 
+    device = wecss.devices.load("notc-10kw")
+    wet = dataclasses.replace(device, flexible={"floater": Flexible(dynamics="elastic")})
+    monkeypatch.setattr(_compile, "_device", lambda name: wet)
+    with pytest.raises(SceneError, match=r"body .floater. has flexible.dynamics = 'elastic' and is wetted"):
+        _compile._device_parts("wetted elastic notc, for this test", None, ())
+
+
+def test_the_rigid_model_methods_refuse_an_elastic_device_until_it_carries_its_modes() -> None:
     device = _elastic_notc()
-    monkeypatch.setattr(_compile, "_device", lambda name: device)
-    with pytest.raises(SceneError, match=r"bodies \['arm'\] have flexible.dynamics = 'elastic'.*dynamics = 'frozen'"):
-        _compile._device_parts("elastic notc, for this test", None, ())
+    with pytest.raises(ValueError, match=r"Device.statics would use the rigid model.*with_elastic_model\(\)"):
+        device.statics()
+    elastic = device.with_elastic_model()
+    assert elastic.model.body("arm").elastic is not None and elastic.with_elastic_model() is elastic
+    assert elastic.elastic_model() is elastic.model
+    assert elastic.statics(with_hydro=False).model is elastic.model
 
 
 def test_the_arm_sags_under_its_weight_as_the_finite_elements_say() -> None:

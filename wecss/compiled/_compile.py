@@ -396,13 +396,10 @@ def _device_parts(
     """The device, its coupling to the database (without the radiation between bodies unless ``body_to_body``),
     its statics, equilibrium and static stiffness (cached, keyed also by the stamps of the files read, ``sources``;
     the arrays are read-only)."""
-    device = _device(name)
-    if device.elastic_bodies:
-        raise SceneError(
-            f"device {device.name!r}: bodies {list(device.elastic_bodies)} have flexible.dynamics = 'elastic'; the "
-            "time-domain runs and the linear model do not carry elastic modes yet (the equations are in "
-            "wecss.multibody: Device.elastic_model()); use dynamics = 'frozen' to run the device rigid"
-        )
+    try:  # elastic bodies' modes in the model (a wetted elastic body is refused)
+        device = _device(name).with_elastic_model()
+    except ValueError as err:
+        raise SceneError(str(err)) from None
     try:
         database = device.hydro(hydro)
     except FileNotFoundError as err:
@@ -448,6 +445,13 @@ def compile_plant(scene: Scene) -> CompiledScene:
     sources = _device_sources(name, hydro_name)
     body_to_body = scene.radiation.body_to_body
     device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name, sources, body_to_body)
+    if device.elastic_bodies and "loads" in scene.outputs.variables:
+        raise SceneError(
+            f"outputs.variables has 'loads', and device {device.name!r} has elastic bodies "
+            f"{list(device.elastic_bodies)} (flexible.dynamics = 'elastic'): the loads' recovery (joint reactions, "
+            "section loads, stress fields) does not carry elastic bodies yet; leave 'loads' out, or run them rigid "
+            "(dynamics = 'frozen')"
+        )
     notes: list[str] = []
     if not body_to_body:
         notes.append("radiation between bodies left out (radiation.body_to_body = false)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -195,13 +195,22 @@ class Device:
         return flexible_body(self.model, self.ptos, self.members, self.masses, body, self._flexible_spec(body))
 
     def _refuse_elastic(self, what: str) -> None:
-        """Refuse a rigid-model method of a device with elastic bodies (it would run them rigid)."""
-        if self.elastic_bodies:
+        """Refuse a rigid-model method of a device whose elastic bodies are not in its model (it would run them
+        rigid)."""
+        if self.elastic_bodies and not self.model.elastic_bodies:
             raise ValueError(
-                f"device {self.name!r}: Device.{what} uses the rigid model, and bodies {list(self.elastic_bodies)} "
-                "have flexible.dynamics = 'elastic'; use Device.elastic_model() with wecss.multibody, or dynamics = "
-                "'frozen'"
+                f"device {self.name!r}: Device.{what} would use the rigid model, and bodies "
+                f"{list(self.elastic_bodies)} have flexible.dynamics = 'elastic'; use Device.with_elastic_model(), "
+                "or dynamics = 'frozen'"
             )
+
+    def with_elastic_model(self) -> Device:
+        """This device with :meth:`elastic_model` as its :attr:`model` (its elastic bodies' modes in the equations
+        of motion; its coupling, statics and dynamics then carry them); itself when it has no elastic body or its
+        model already carries them."""
+        if not self.elastic_bodies or self.model.elastic_bodies:
+            return self
+        return replace(self, model=self.elastic_model())
 
     @property
     def elastic_bodies(self) -> tuple[str, ...]:
@@ -213,7 +222,7 @@ class Device:
         such body takes its structural model's mass, centre of mass and inertia (the structure carries the body's
         mass, to ``MASS_TOLERANCE``) and its modal coordinates (``<body>__flex1``, ...) join the generalised
         coordinates after the joints'; its children ride on its nodes (``FlexibleBody.elastic_body``). Without
-        elastic bodies it is :attr:`model` itself.
+        elastic bodies, or when :attr:`model` already carries them, it is :attr:`model` itself.
 
         Raises
         ------
@@ -221,7 +230,7 @@ class Device:
             If an elastic body is wetted (it has hydrodynamics or a mesh): floats stay rigid children of flexible
             members; the wetted modes of a flexible body are not modelled.
         """
-        if not self.elastic_bodies:
+        if not self.elastic_bodies or self.model.elastic_bodies:
             return self.model
         bodies = list(self.model.bodies)
         for name in self.elastic_bodies:

@@ -11,6 +11,7 @@ from ._modal_recursion import NotDiagonalisable as NotDiagonalisable
 from ._model import HydroResponse as HydroResponse
 from ._model import LinearModel as LinearModel
 from ._model import NoStateSpace as NoStateSpace
+from ._model import cartesian_mass as cartesian_mass
 from ._model import equilibrium_maps as equilibrium_maps
 from ._model import exact_step as exact_step
 from ._model import linearize as linearize

@@ -59,6 +59,17 @@ def equilibrium_maps(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray, n
     return b, world_jacobian(p, rot, b)[p.hydro_index], g, stroke - p.pto_rest
 
 
+def cartesian_mass(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
+    """The plant's Cartesian mass (n_cart, n_cart) at the configuration ``q``: the bodies' mass with the
+    simulator's A_inf (``Plant.total_mass``), a flexible body's rotation and mode rows its M(xi) at the modal
+    coordinates of ``q`` (the plant holds the undeformed one) [kg, kg m, kg m^2]."""
+    p = compiled.plant
+    model = compiled.device.model
+    if not model.elastic_bodies:
+        return p.total_mass
+    return p.total_mass + body_mass_matrix(model, q) - body_mass_matrix(model)
+
+
 @dataclass(frozen=True)
 class HydroResponse:
     """The database's frequency-dependent radiation coefficients on the hydro DOFs, for the exact frequency
@@ -508,10 +519,11 @@ def _cache_key(compiled: CompiledScene) -> str:
 def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -> LinearModel:
     p = compiled.plant
     b, bw, g, stroke = equilibrium_maps(compiled)
-    mass = b.T @ p.total_mass @ b
+    mass = b.T @ cartesian_mass(compiled, compiled.q0) @ b
     mass = 0.5 * (mass + mass.T)
     # the database's own A_inf: the exact frequency response adds A(omega) - A_inf (no memory-model correction)
-    database = b.T @ (body_mass_matrix(compiled.device.model) + compiled.coupling.added_mass_inf) @ b
+    body_mass = body_mass_matrix(compiled.device.model, compiled.q0)
+    database = b.T @ (body_mass + compiled.coupling.added_mass_inf) @ b
     stiffness = compiled.stiffness  # device springs and the controller's stiffness included
     # the joints' own losses and the moorings' dampers too
     damping = linear_damping(p, g, bw)

@@ -23,6 +23,7 @@ from ..compiled.kernels import Workspace, accelerations, configure, integrate_co
 from ..control import ControlledScene
 from ..scene import Capabilities
 from ._fixed_step import FixedStepRunner
+from ._guards import check_beeman_elastic
 from ._loop import (
     ACCELERATION_FLOOR,
     Chunk,
@@ -197,6 +198,10 @@ class Beeman(FixedStepRunner):
         order=2,
         tolerance=True,
     )
+
+    def prepare(self, controlled: ControlledScene) -> Any:
+        check_beeman_elastic(controlled)
+        return None
 
     def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
         return beeman_chunk(*chunk)

@@ -16,7 +16,8 @@ import xarray as xr
 
 from ..compiled import DRY, OUTSIDE_TABLE, SUBMERGED, CompiledScene
 from ..compiled.kernels import poses
-from ..linear import equilibrium_maps
+from ..linear import cartesian_mass, equilibrium_maps
+from ..scene import SceneError
 from ..waves import wavenumber
 from ._rk4_check import check_rk4 as check_rk4_region
 
@@ -36,20 +37,76 @@ ROTATION_LIMIT = float(np.deg2rad(20.0))
 DRIFT_LIMIT = 1.0
 
 
-def fastest_mode(compiled: CompiledScene) -> float:
-    """|s| [rad/s] of the fastest mode of the plant linearised about its equilibrium with the PTO gains in its
+def _modes(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues and eigenvectors of the plant linearised about its equilibrium with the PTO gains in its
     equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out)."""
     p = compiled.plant
     b, _, g, _ = equilibrium_maps(compiled)
-    mass = b.T @ p.total_mass @ b
+    mass = b.T @ cartesian_mass(compiled, compiled.q0) @ b
     damping = g.T @ np.diag(p.pto_damping) @ g
     nv = mass.shape[0]
     a = np.zeros((2 * nv, 2 * nv))
     a[:nv, nv:] = np.eye(nv)
     a[nv:, :nv] = -np.linalg.solve(mass, compiled.stiffness)
     a[nv:, nv:] = -np.linalg.solve(mass, damping)
-    eig = np.linalg.eigvals(a)
+    return np.linalg.eig(a)
+
+
+def fastest_mode(compiled: CompiledScene) -> float:
+    """|s| [rad/s] of the fastest mode of the plant linearised about its equilibrium with the PTO gains in its
+    equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out)."""
+    eig, _ = _modes(compiled)
     return float(np.max(np.abs(eig))) if eig.size else 0.0
+
+
+def elastic_cause(compiled: CompiledScene) -> str:
+    """A sentence naming the elastic bodies when the plant's fastest mode is mostly their modal coordinates (its
+    displacement's share on them above one half), else empty."""
+    model = compiled.device.model
+    if not model.elastic_bodies:
+        return ""
+    eig, vectors = _modes(compiled)
+    k = int(np.argmax(np.abs(eig)))
+    nv = model.nv
+    shape = np.abs(vectors[:nv, k]) ** 2
+    modal = np.zeros(nv, dtype=bool)
+    names = []
+    for i in model.elastic_bodies:
+        modal[model.mode_velocity_start[i] : model.mode_velocity_start[i + 1]] = True
+        names.append(model.bodies[i].name)
+    if shape[modal].sum() <= 0.5 * shape.sum():
+        return ""
+    return (
+        f"the elastic modes of {names} set it (the fastest, |s| = {abs(eig[k]):.4g} rad/s, is their modal "
+        "coordinates'): give solver.dt at most the limit, or run them rigid (flexible.dynamics = 'frozen')"
+    )
+
+
+#: Beeman's position step is explicit: an undamped mode of |s| dt above 2 grows (its stability limit, that of the
+#: Stormer-Verlet scheme); elastic modes are refused above this, with the margin of RK4's check.
+BEEMAN_ELASTIC_LIMIT = 2.0 / 1.1
+
+
+def check_beeman_elastic(compiled: CompiledScene) -> None:
+    """Refuse Beeman's explicit position step when an elastic body's modes set the plant's fastest mode beyond
+    :data:`BEEMAN_ELASTIC_LIMIT` (a rigid plant is not checked: its stiff PTO steps fall back on the trapezoidal
+    rule).
+
+    Raises
+    ------
+    SceneError
+        Giving the largest stable step and the elastic bodies.
+    """
+    if not compiled.device.model.elastic_bodies:
+        return
+    rate = fastest_mode(compiled)
+    limit = BEEMAN_ELASTIC_LIMIT / rate if rate > 0 else np.inf
+    cause = elastic_cause(compiled)
+    if compiled.dt > limit and cause:
+        raise SceneError(
+            f"Beeman's explicit position step is unstable for this plant: its fastest mode needs dt <= {limit:.3g} s "
+            f"(given {compiled.dt:.3g} s, with a margin of 1.1); {cause}"
+        )
 
 
 def _gains(compiled: CompiledScene) -> str:
@@ -71,7 +128,7 @@ def check_rk4(compiled: CompiledScene) -> None:
     SceneError
         Naming the PTO gains when there are any.
     """
-    check_rk4_region(compiled, _gains(compiled))
+    check_rk4_region(compiled, _gains(compiled), elastic_cause(compiled))
 
 
 def stiff_pto_hint(compiled: CompiledScene) -> str:

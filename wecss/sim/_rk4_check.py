@@ -23,7 +23,7 @@ import numpy as np
 
 from ..compiled import CompiledScene, linear_damping
 from ..compiled.kernels import integrate_configuration, kinematics, pto_strokes, world_jacobian
-from ..linear import linearize
+from ..linear import cartesian_mass, linearize
 from ..scene import SceneError
 
 #: The step must be stable at this multiple of itself (the configurations are sampled, not searched).
@@ -87,7 +87,7 @@ def _mechanical_eigenvalues(compiled: CompiledScene, q: np.ndarray) -> np.ndarra
     rot, pos, b, _, _ = kinematics(p, q, np.zeros(nv))
     bw = world_jacobian(p, rot, b)[p.hydro_index]
     _, g = pto_strokes(p, q, rot, pos, b)
-    mass = b.T @ p.total_mass @ b
+    mass = b.T @ cartesian_mass(compiled, q) @ b
     damping = linear_damping(p, g, bw)
     a = np.zeros((2 * nv, 2 * nv))
     a[:nv, nv:] = np.eye(nv)
@@ -171,13 +171,15 @@ def _step_limit(compiled: CompiledScene) -> tuple[float, str]:
     return limit / RK4_MARGIN, cause
 
 
-def check_rk4(compiled: CompiledScene, gains: str) -> None:
+def check_rk4(compiled: CompiledScene, gains: str, elastic: str = "") -> None:
     """Refuse RK4 when the step passes :func:`rk4_step_limit`.
 
     Parameters
     ----------
     gains : str
         The PTO gains, as text for the message (empty when there are none).
+    elastic : str
+        A sentence naming the elastic bodies when their modes set the limit (empty otherwise).
 
     Raises
     ------
@@ -188,9 +190,11 @@ def check_rk4(compiled: CompiledScene, gains: str) -> None:
     dt = compiled.dt
     if dt <= limit:
         return
-    likely = f"the PTO gains ({gains} [SI]) are the likely cause; " if gains else ""
-    raise SceneError(
+    head = (
         f"RK4 is unstable for this plant: {cause} over the configurations the run may reach need dt <= "
-        f"{limit:.3g} s (given {dt:.3g} s, with a margin of {RK4_MARGIN:g}); {likely}reduce the PTO gain, use "
-        "'beeman' or give a smaller solver.dt"
+        f"{limit:.3g} s (given {dt:.3g} s, with a margin of {RK4_MARGIN:g}); "
     )
+    if elastic:
+        raise SceneError(head + elastic)
+    likely = f"the PTO gains ({gains} [SI]) are the likely cause; " if gains else ""
+    raise SceneError(head + f"{likely}reduce the PTO gain, use 'beeman' or give a smaller solver.dt")

@@ -16,6 +16,7 @@ from ..interrupts import interrupts_surfaced
 from ..netcdf import partial_path, storage_encoding, write_netcdf
 from ..provenance import with_relative_paths
 from ..scene import Scene
+from ._alpha import with_elastic_choice
 from ._dataset import build_result
 from ._stream import ResultStream, streamable
 from ._tolerance import choose_step
@@ -107,6 +108,7 @@ def simulate(
         controlled = compile_scene(scene, controller)
     else:
         raise TypeError(f"simulate takes a Scene, a CompiledScene or a scene file; got {type(scene).__name__}")
+    controlled = with_elastic_choice(controlled)  # generalised-alpha where the elastic modes need it
     runner = controlled.scene.runner
     chosen = choice.attrs() if choice is not None else {}
     if path is not None and streamable(controlled):

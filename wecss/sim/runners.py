@@ -7,6 +7,8 @@ the recorder, the checks, the radiation memory's history and advance; the equati
 ``wecss.compiled.kernels.configure`` and ``respond``.
 """
 
+from ._alpha import GENERALIZED_ALPHA as GENERALIZED_ALPHA
+from ._alpha import GeneralizedAlphaRunner as GeneralizedAlphaRunner
 from ._beeman import BEEMAN as BEEMAN
 from ._beeman import Beeman as Beeman
 from ._explicit import BEEMAN_EXPLICIT as BEEMAN_EXPLICIT
