@@ -37,13 +37,14 @@ ROTATION_LIMIT = float(np.deg2rad(20.0))
 DRIFT_LIMIT = 1.0
 
 
-def _modes(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray]:
-    """Eigenvalues and eigenvectors of the plant linearised about its equilibrium with the PTO gains in its
-    equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out)."""
+def _modes(compiled: CompiledScene, damped: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues s and eigenvectors (velocity part first) of the plant linearised about its equilibrium with the
+    PTO gains in its equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left
+    out); without ``damped``, of the undamped plant: s = i omega."""
     p = compiled.plant
     b, _, g, _ = equilibrium_maps(compiled)
     mass = b.T @ cartesian_mass(compiled, compiled.q0) @ b
-    damping = g.T @ np.diag(p.pto_damping) @ g
+    damping = g.T @ np.diag(p.pto_damping) @ g if damped else np.zeros_like(mass)
     nv = mass.shape[0]
     a = np.zeros((2 * nv, 2 * nv))
     a[:nv, nv:] = np.eye(nv)
@@ -52,20 +53,21 @@ def _modes(compiled: CompiledScene) -> tuple[np.ndarray, np.ndarray]:
     return np.linalg.eig(a)
 
 
-def fastest_mode(compiled: CompiledScene) -> float:
+def fastest_mode(compiled: CompiledScene, damped: bool = True) -> float:
     """|s| [rad/s] of the fastest mode of the plant linearised about its equilibrium with the PTO gains in its
-    equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out)."""
-    eig, _ = _modes(compiled)
+    equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out); without
+    ``damped``: the largest undamped natural frequency."""
+    eig, _ = _modes(compiled, damped)
     return float(np.max(np.abs(eig))) if eig.size else 0.0
 
 
-def elastic_cause(compiled: CompiledScene) -> str:
-    """A sentence naming the elastic bodies when the plant's fastest mode is mostly their modal coordinates (its
-    displacement's share on them above one half), else empty."""
+def elastic_cause(compiled: CompiledScene, damped: bool = True) -> str:
+    """A sentence naming the elastic bodies when the plant's fastest mode (``damped`` as :func:`fastest_mode`) is
+    mostly their modal coordinates (its displacement's share on them above one half), else empty."""
     model = compiled.device.model
     if not model.elastic_bodies:
         return ""
-    eig, vectors = _modes(compiled)
+    eig, vectors = _modes(compiled, damped)
     k = int(np.argmax(np.abs(eig)))
     nv = model.nv
     shape = np.abs(vectors[:nv, k]) ** 2
@@ -78,19 +80,21 @@ def elastic_cause(compiled: CompiledScene) -> str:
         return ""
     return (
         f"the elastic modes of {names} set it (the fastest, |s| = {abs(eig[k]):.4g} rad/s, is their modal "
-        "coordinates'): give solver.dt at most the limit, or run them rigid (flexible.dynamics = 'frozen')"
+        "coordinates'): give solver.dt at most the limit, use solver.method 'generalized-alpha' (implicit), or run "
+        "them rigid (flexible.dynamics = 'frozen')"
     )
 
 
-#: Beeman's position step is explicit: an undamped mode of |s| dt above 2 grows (its stability limit, that of the
-#: Stormer-Verlet scheme); elastic modes are refused above this, with the margin of RK4's check.
+#: Beeman's position step is explicit: an undamped mode of omega dt above 2 grows (its stability limit, that of the
+#: Stormer-Verlet scheme; damping acts through its implicit corrector, with the trapezoidal rule where that fails);
+#: elastic modes are refused above this, with the margin of RK4's check.
 BEEMAN_ELASTIC_LIMIT = 2.0 / 1.1
 
 
 def check_beeman_elastic(compiled: CompiledScene) -> None:
-    """Refuse Beeman's explicit position step when an elastic body's modes set the plant's fastest mode beyond
-    :data:`BEEMAN_ELASTIC_LIMIT` (a rigid plant is not checked: its stiff PTO steps fall back on the trapezoidal
-    rule).
+    """Refuse Beeman's explicit position step when an elastic body's modes set the plant's largest undamped
+    natural frequency beyond :data:`BEEMAN_ELASTIC_LIMIT` / dt (a rigid plant is not checked: its stiff PTO steps
+    fall back on the trapezoidal rule).
 
     Raises
     ------
@@ -99,13 +103,13 @@ def check_beeman_elastic(compiled: CompiledScene) -> None:
     """
     if not compiled.device.model.elastic_bodies:
         return
-    rate = fastest_mode(compiled)
+    rate = fastest_mode(compiled, damped=False)
     limit = BEEMAN_ELASTIC_LIMIT / rate if rate > 0 else np.inf
-    cause = elastic_cause(compiled)
+    cause = elastic_cause(compiled, damped=False)
     if compiled.dt > limit and cause:
         raise SceneError(
-            f"Beeman's explicit position step is unstable for this plant: its fastest mode needs dt <= {limit:.3g} s "
-            f"(given {compiled.dt:.3g} s, with a margin of 1.1); {cause}"
+            f"Beeman's explicit position step is unstable for this plant: its fastest undamped mode needs dt <= "
+            f"{limit:.3g} s (given {compiled.dt:.3g} s, with a margin of 1.1); {cause}"
         )
 
 
