@@ -12,6 +12,7 @@ import pytest
 from tests.multibody.elastic_models import arm_device, hinged_beam
 from wecss.compiled import _kernels as K
 from wecss.compiled import build_plant
+from wecss.compiled._plant import elastic_arrays
 from wecss.multibody import Dynamics, Multibody, gravity_force, integrate, kinematics, structural_force
 
 G = 9.81
@@ -108,3 +109,21 @@ def test_a_rigid_plant_has_empty_elastic_arrays() -> None:
     per_body = {"of_body", "of_child", "on_path"}
     assert all(getattr(el, name).shape[0] == 0 for name in el._fields if name not in per_body)
     assert (el.of_body == -1).all() and (el.of_child == -1).all() and el.on_path.shape == (len(model.bodies), 0)
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+def test_the_packed_elastic_arrays_give_back_the_built_ones(name: str) -> None:
+    """``Plant.elastic`` (views of the two packed arrays) equals ``elastic_arrays`` exactly, array by array, and
+    the Workspace's elastic array is as long as its views need."""
+    model = MODELS[name]
+    plant = build_plant(model, None, (), G)
+    built = elastic_arrays(model, plant.active)
+    got = plant.elastic
+    assert plant.n_elastic == built.body.shape[0] > 0
+    for field in built._fields:
+        ref, value = getattr(built, field), getattr(got, field)
+        assert value.shape == ref.shape and value.dtype == ref.dtype, field
+        np.testing.assert_array_equal(value, ref, err_msg=field)
+    work = K.workspace(plant).elastic
+    views = K.elastic_work(plant.elastic_index, work)
+    assert sum(v.size for v in views) == work.size

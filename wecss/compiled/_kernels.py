@@ -24,7 +24,7 @@ import numpy as np
 from ._body_exact import configure_pressure
 from ._jit import inline_kernel, kernel, step_kernel
 from ._linalg import cholesky, cholesky_solve, congruence, matvec, matvec_add, matvec_t_add
-from ._plant import Plant, PtoKind
+from ._plant import Plant, PtoKind, elastic_of_body, elastic_of_child, elastic_views
 from ._pto_law import pto_control_force_kernel
 from ._rotation import so3_log_into
 from ._viscous import TermsWork, configure_viscous, respond_viscous, terms_work
@@ -135,13 +135,8 @@ class Workspace(NamedTuple):
     Scratch: force (n_cart,), disp, restoring, load (n_h,), inertial (m,), mass_work (nv, m), gen (nv,), partial (6,),
     vec, vec2, t_step (3,), r_step, r_new (3, 3)
     Hydrodynamic terms beyond the linear database: terms (``wecss.compiled._viscous.TermsWork``)
-    Flexible bodies (``Plant.elastic``; empty without them)
-        att_cols, att_cols_dot (n_att, nm, 6): the world twists of the parent's mode columns on each elastic
-        attachment and their time derivatives (they differ between the children of one flexible body, so they are
-        kept per attachment, not in ``cols``); active_mass (m, m): ``Plant.active_mass`` with the flexible bodies'
-        M(xi) at the configuration; el_mass (n_el, 3 + nm, 3 + nm) M(xi), el_dmass (n_el, nm, 3 + nm, 3 + nm)
-        dM/dxi; quad (n_cart,) their quadratic-velocity vector (D M + Q) Y on the rotation and mode rows; scratch
-        el_y, el_my (3 + nm,), vec3 (3,)
+    Flexible bodies: elastic, one float array holding an :class:`ElasticWork` (:func:`elastic_work`; empty for a
+    plant without them: one array rather than nine, see ``Plant.elastic_index``)
     """
 
     rot: np.ndarray
@@ -179,15 +174,63 @@ class Workspace(NamedTuple):
     r_new: np.ndarray
     t_step: np.ndarray
     terms: TermsWork
+    elastic: np.ndarray
+
+
+class ElasticWork(NamedTuple):
+    """The flexible bodies' part of a :class:`Workspace`, views of its ``elastic`` array (:func:`elastic_work`;
+    n_el, nm, n_att, m and n_cart as in ``Plant.elastic_index``).
+
+    att_cols, att_cols_dot (n_att, nm, 6): the world twists of the parent's mode columns on each elastic attachment
+    and their time derivatives (they differ between the children of one flexible body, so they are kept per
+    attachment, not in ``cols``); active_mass (m, m): ``Plant.active_mass`` with the flexible bodies' M(xi) at the
+    configuration; mass (n_el, 3 + nm, 3 + nm) M(xi), dmass (n_el, nm, 3 + nm, 3 + nm) dM/dxi; quad (n_cart,)
+    their quadratic-velocity vector (D M + Q) Y on the rotation and mode rows; scratch y, my (3 + nm,)
+    """
+
     att_cols: np.ndarray
     att_cols_dot: np.ndarray
     active_mass: np.ndarray
-    el_mass: np.ndarray
-    el_dmass: np.ndarray
-    el_y: np.ndarray
-    el_my: np.ndarray
+    mass: np.ndarray
+    dmass: np.ndarray
+    y: np.ndarray
+    my: np.ndarray
     quad: np.ndarray
-    vec3: np.ndarray
+
+
+@inline_kernel
+def elastic_work_size(index: np.ndarray) -> int:
+    """The length of a Workspace's ``elastic`` array for a plant's ``elastic_index`` (0 without flexible
+    bodies)."""
+    n_el, nm, n_att, m, n_cart = index[1], index[2], index[3], index[4], index[5]
+    if n_el == 0:
+        return 0
+    k = 3 + nm
+    return 2 * n_att * nm * 6 + m * m + n_el * k * k + n_el * nm * k * k + 2 * k + n_cart
+
+
+@inline_kernel
+def elastic_work(index: np.ndarray, work: np.ndarray) -> ElasticWork:
+    """The :class:`ElasticWork` views of a Workspace's ``elastic`` array (a plant with flexible bodies)."""
+    n_el, nm, n_att, m, n_cart = index[1], index[2], index[3], index[4], index[5]
+    k = 3 + nm
+    o = 0
+    att_cols = work[o : o + n_att * nm * 6].reshape((n_att, nm, 6))
+    o += n_att * nm * 6
+    att_cols_dot = work[o : o + n_att * nm * 6].reshape((n_att, nm, 6))
+    o += n_att * nm * 6
+    active_mass = work[o : o + m * m].reshape((m, m))
+    o += m * m
+    mass = work[o : o + n_el * k * k].reshape((n_el, k, k))
+    o += n_el * k * k
+    dmass = work[o : o + n_el * nm * k * k].reshape((n_el, nm, k, k))
+    o += n_el * nm * k * k
+    y = work[o : o + k]
+    o += k
+    my = work[o : o + k]
+    o += k
+    quad = work[o : o + n_cart]
+    return ElasticWork(att_cols, att_cols_dot, active_mass, mass, dmass, y, my, quad)
 
 
 @kernel
@@ -199,9 +242,6 @@ def workspace(p: Plant) -> Workspace:
     m = p.active.shape[0]
     n_h = p.hydro_index.shape[0]
     n_pto = p.pto_kind.shape[0]
-    n_el = p.elastic.body.shape[0]
-    nm = p.elastic.modal_mass.shape[1]
-    n_att = p.elastic.child.shape[0]
     return Workspace(
         np.zeros((n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((6, nv)), np.zeros((n_cart, nv)),
         np.zeros((nv, m)), np.zeros((n_h, nv)), np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros(nv),
@@ -210,10 +250,7 @@ def workspace(p: Plant) -> Workspace:
         np.zeros(n_h), np.zeros(n_pto), np.zeros(n_pto),
         np.zeros(n_cart), np.zeros(n_h), np.zeros(n_h), np.zeros(n_h), np.zeros(m), np.zeros((nv, m)), np.zeros(nv),
         np.zeros(6), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3),
-        terms_work(p.viscous, n),
-        np.zeros((n_att, nm, 6)), np.zeros((n_att, nm, 6)), p.active_mass.copy(),
-        np.zeros((n_el, 3 + nm, 3 + nm)), np.zeros((n_el, nm, 3 + nm, 3 + nm)), np.zeros(3 + nm), np.zeros(3 + nm),
-        np.zeros(n_cart), np.zeros(3),
+        terms_work(p.viscous, n), np.zeros(elastic_work_size(p.elastic_index)),
     )  # fmt: skip
 
 
@@ -225,11 +262,10 @@ def place(p: Plant, q: np.ndarray, w: Workspace, elastic: bool) -> None:
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
     rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
-    el = p.elastic
     _frames(
         p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, p.com0, q, w.rot, w.trans, w.pos,
-        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True, elastic, el.of_body, el.of_child, el.size,
-        el.coordinate, el.mass, el.first_moment, el.coupling, el.twists, w.att_cols,
+        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True, elastic, p.elastic_index, p.elastic_data,
+        w.elastic,
     )  # fmt: skip
     # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
     for i in range(n):
@@ -252,22 +288,23 @@ def place(p: Plant, q: np.ndarray, w: Workspace, elastic: bool) -> None:
             b[row, c] = 0.0
         b[row, p.cart_column[row]] = 1.0
     if elastic:
-        _place_elastic(
-            el.of_body, el.parent, el.size, el.column, el.mass, el.coupling, el.on_path, w.att_cols, w.rot, w.pos,
-            p.cart_start, b, tmp,
-        )  # fmt: skip
+        _place_elastic(p.elastic_index, p.elastic_data, w.elastic, w.rot, w.pos, p.cart_start, b, tmp)
 
 
 @step_kernel
 def _place_elastic(
-    of_body: np.ndarray, att_parent: np.ndarray, size: np.ndarray, column: np.ndarray, mass: np.ndarray,
-    coupling: np.ndarray, on_path: np.ndarray, att_cols: np.ndarray, rot: np.ndarray, pos: np.ndarray,
-    cart_start: np.ndarray, b: np.ndarray, tmp: np.ndarray,
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, rot: np.ndarray, pos: np.ndarray, cart_start: np.ndarray,
+    b: np.ndarray, tmp: np.ndarray,
 ) -> None:  # fmt: skip
-    """B's columns of the flexible bodies' modes (``wecss.multibody._kinematics``; the arrays as in
-    ``ElasticArrays`` and the Workspace): on the rigid rows of a body carried by an elastic attachment,
-    [[I, -hat(p)], [0, R']] times the attachment's twist; on the body's own translational rows, R Ct / m (its
-    centre of mass moves with the structure). (Not inlined: see :func:`_ride_attachment`.)"""
+    """B's columns of the flexible bodies' modes (``wecss.multibody._kinematics``; ``index``, ``data``: the plant's
+    ``elastic_index``, ``elastic_data``, ``work`` the Workspace's ``elastic``, the others as in the Plant and the
+    Workspace): on the rigid rows of a body carried by an elastic attachment, [[I, -hat(p)], [0, R']] times the
+    attachment's twist; on the body's own translational rows, R Ct / m (its centre of mass moves with the
+    structure). (Not inlined: see :func:`_ride_attachment`.)"""
+    el = elastic_views(index, data)
+    of_body, att_parent, size, column, mass, coupling, on_path = el.of_body, el.parent, el.size, el.column, \
+        el.mass, el.coupling, el.on_path  # fmt: skip
+    att_cols = elastic_work(index, work).att_cols
     for i in range(rot.shape[0]):
         r = rot[i]
         pi = pos[i]
@@ -301,18 +338,17 @@ def _frames(
     order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, q_start: np.ndarray, n_cols: np.ndarray,
     free: np.ndarray, joint_twists: np.ndarray, com0: np.ndarray, q: np.ndarray, rot: np.ndarray, trans: np.ndarray,
     pos: np.ndarray, cols: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
-    r_new: np.ndarray, twists: bool, elastic: bool, of_body: np.ndarray, of_child: np.ndarray, el_size: np.ndarray,
-    el_coordinate: np.ndarray, el_mass: np.ndarray, el_first_moment: np.ndarray, el_coupling: np.ndarray,
-    att_twists: np.ndarray, att_cols: np.ndarray,
+    r_new: np.ndarray, twists: bool, elastic: bool, el_index: np.ndarray, el_data: np.ndarray, el_work: np.ndarray,
 ) -> None:  # fmt: skip
     """The bodies' frames rot, trans and CoM positions pos at configuration ``q``; with ``twists`` also the world
     twists of the joint columns, ``cols`` (the arrays as in Plant and Workspace). It takes the arrays, not the
     tuples: a call with the Plant and Workspace costs about 1 us (a reference count per array they hold), more than
     the frames of a few bodies, and :func:`poses` calls it once per configuration.
 
-    Flexible bodies (``Plant.elastic``): a joint on an elastic attachment of its parent rides on
-    prod_k exp(psi_k xi_k) of the attachment's twists (their world twists into ``att_cols`` with ``twists``); a
-    flexible body's centre of mass is c0 + (s0 + Ct xi) / m."""
+    Flexible bodies (``elastic``: a constant of the caller; ``el_index``, ``el_data`` the plant's ``elastic_index``
+    and ``elastic_data``, ``el_work`` the Workspace's ``elastic``): a joint on an elastic attachment of its parent
+    rides on prod_k exp(psi_k xi_k) of the attachment's twists (their world twists into ``ElasticWork.att_cols``
+    with ``twists``); a flexible body's centre of mass is c0 + (s0 + Ct xi) / m."""
     n = com0.shape[0]
     if twists:
         for a in range(6):
@@ -329,11 +365,9 @@ def _frames(
                 r[a, b] = rot[par, a, b] if par >= 0 else (1.0 if a == b else 0.0)
         iv = col_start[i]
         iq = q_start[i]
-        att = of_child[i] if elastic else -1
+        att = elastic_of_child(el_index, i) if elastic else -1
         if att >= 0:  # on an elastic attachment of the parent
-            e = of_body[par]
-            _ride_attachment(att_twists, att, el_size[e], el_coordinate[e], q, r, t, att_cols, twists, tmp, tmp2,
-                             t_step, r_step, r_new)  # fmt: skip
+            _ride_attachment(el_index, el_data, el_work, att, q, r, t, twists, tmp, tmp2, t_step, r_step, r_new)
         if free[i] == 1:
             _quat_matrix_into(q, iq + 3, r)
             _rotate(r, com0[i], tmp)
@@ -370,9 +404,9 @@ def _frames(
                 for a in range(3):
                     for b in range(3):
                         r[a, b] = r_new[a, b]
-        e = of_body[i] if elastic else -1
+        e = elastic_of_body(el_index, i) if elastic else -1
         if e >= 0:  # a flexible body's centre of mass moves with the structure
-            _elastic_centre(com0, i, e, el_size, el_coordinate, el_mass, el_first_moment, el_coupling, q, tmp2)
+            _elastic_centre(el_index, el_data, com0, i, e, q, tmp2)
             _rotate(r, tmp2, tmp)
         else:
             _rotate(r, com0[i], tmp)
@@ -382,14 +416,19 @@ def _frames(
 
 @step_kernel
 def _ride_attachment(
-    att_twists: np.ndarray, att: int, n: int, first: int, q: np.ndarray, r: np.ndarray, t: np.ndarray,
-    att_cols: np.ndarray, twists: bool, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
-    r_new: np.ndarray,
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, att: int, q: np.ndarray, r: np.ndarray, t: np.ndarray,
+    twists: bool, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray, r_new: np.ndarray,
 ) -> None:  # fmt: skip
-    """The frame (r, t) carried along elastic attachment ``att`` of a flexible body whose ``n`` modal coordinates
-    start at q[first]: G <- G prod_k exp(psi_k xi_k); with ``twists`` the world twists Ad(G) psi_k before each
-    factor into ``att_cols[att]``. (A kernel of its own, not inlined: the per-step kernels stay small enough for
-    numba to prune their reference counts, see ``_jit.inline_kernel``.)"""
+    """The frame (r, t) carried along elastic attachment ``att`` (``index``, ``data``, ``work``: see
+    :func:`_frames`): G <- G prod_k exp(psi_k xi_k) over the parent's modal coordinates xi; with ``twists`` the
+    world twists Ad(G) psi_k before each factor into ``att_cols[att]``. (A kernel of its own, not inlined: the
+    per-step kernels stay small enough for numba to prune their reference counts, see ``_jit.inline_kernel``; it
+    takes the packed arrays, not the views, for the same reason.)"""
+    el = elastic_views(index, data)
+    att_twists = el.twists
+    att_cols = elastic_work(index, work).att_cols
+    e = el.of_body[el.parent[att]]
+    n, first = el.size[e], el.coordinate[e]
     for k in range(n):
         psi = att_twists[att, k]
         if twists:
@@ -412,10 +451,13 @@ def _ride_attachment(
 
 @step_kernel
 def _elastic_centre(
-    com0: np.ndarray, i: int, e: int, el_size: np.ndarray, el_coordinate: np.ndarray, el_mass: np.ndarray,
-    el_first_moment: np.ndarray, el_coupling: np.ndarray, q: np.ndarray, out: np.ndarray,
-) -> None:  # fmt: skip
-    """The centre of mass c0 + (s0 + Ct xi) / m of body ``i``, flexible body ``e``, in its frame, into ``out``."""
+    index: np.ndarray, data: np.ndarray, com0: np.ndarray, i: int, e: int, q: np.ndarray, out: np.ndarray
+) -> None:
+    """The centre of mass c0 + (s0 + Ct xi) / m of body ``i``, flexible body ``e``, in its frame, into ``out``
+    (``index``, ``data``: see :func:`_frames`)."""
+    el = elastic_views(index, data)
+    el_size, el_coordinate, el_mass, el_first_moment, el_coupling = el.size, el.coordinate, el.mass, \
+        el.first_moment, el.coupling  # fmt: skip
     first = el_coordinate[e]
     for a in range(3):
         moment = el_first_moment[e, a]
@@ -465,11 +507,9 @@ def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
         else:
             for a in range(6):  # element loops: a slice assignment is a call (and allocates)
                 vel[a] = w.spatial[par, a] if par >= 0 else 0.0
-            att = p.elastic.of_child[i] if elastic else -1
+            att = elastic_of_child(p.elastic_index, i) if elastic else -1
             if att >= 0:  # on an elastic attachment: the parent's mode columns come first
-                e = p.elastic.of_body[par]
-                _move_attachment(w.att_cols, w.att_cols_dot, att, p.elastic.size[e], p.elastic.column[e], v, vel,
-                                 tmp, tmp2)  # fmt: skip
+                _move_attachment(p.elastic_index, p.elastic_data, w.elastic, att, v, vel, tmp, tmp2)
             for k in range(p.n_cols[i]):
                 col = iv + k
                 s = cols[:, col]
@@ -503,12 +543,10 @@ def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
                 for a in range(6):
                     acc[a] += cols_dot[a, c] * v[c]
         e = -1
-        if elastic:
-            el = p.elastic
+        if elastic:  # (w.t_step: scratch here, free in the velocity part)
             e = _move_elastic(
-                el.on_path, el.of_body, el.parent, el.size, el.column, el.mass, el.coupling, w.att_cols_dot, i, v,
-                acc, w.rot, w.omega, w.lin, tmp, tmp2, w.vec3,
-            )  # fmt: skip
+                p.elastic_index, p.elastic_data, w.elastic, i, v, acc, w.rot, w.omega, w.lin, tmp, tmp2, w.t_step
+            )
         _cross(w.lin[i], spatial[3:], tmp)
         _cross(pi, acc[3:], tmp2)
         r0 = p.cart_start[i]
@@ -516,19 +554,24 @@ def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
             w.bias[r0 + a] = -tmp[a] + acc[a] - tmp2[a]
             w.bias[r0 + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
         if e >= 0:  # Bdot on a flexible body's own mode columns: R hat(w_b) Ct / m
-            _rotate(r, w.vec3, tmp)
+            _rotate(r, w.t_step, tmp)
             for a in range(3):
                 w.bias[r0 + a] += tmp[a]
 
 
 @step_kernel
 def _move_attachment(
-    att_cols: np.ndarray, att_cols_dot: np.ndarray, att: int, n: int, first: int, v: np.ndarray, vel: np.ndarray,
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, att: int, v: np.ndarray, vel: np.ndarray,
     tmp: np.ndarray, tmp2: np.ndarray,
 ) -> None:  # fmt: skip
-    """Along elastic attachment ``att`` (``n`` modal velocities from v[first]): dS/dt = [V, S] of each of its
-    columns into ``att_cols_dot[att]``, the spatial velocity ``vel`` advanced past it. (Not inlined: see
-    :func:`_ride_attachment`.)"""
+    """Along elastic attachment ``att`` (over its parent's modal velocities; ``index``, ``data``, ``work``: see
+    :func:`_frames`): dS/dt = [V, S] of each of its columns into ``att_cols_dot[att]``, the spatial velocity ``vel``
+    advanced past it. (Not inlined: see :func:`_ride_attachment`.)"""
+    el = elastic_views(index, data)
+    ew = elastic_work(index, work)
+    att_cols, att_cols_dot = ew.att_cols, ew.att_cols_dot
+    e = el.of_body[el.parent[att]]
+    n, first = el.size[e], el.column[e]
     for k in range(n):
         s = att_cols[att, k]
         sd = att_cols_dot[att, k]
@@ -545,15 +588,18 @@ def _move_attachment(
 
 @step_kernel
 def _move_elastic(
-    on_path: np.ndarray, of_body: np.ndarray, att_parent: np.ndarray, size: np.ndarray, column: np.ndarray,
-    mass: np.ndarray, coupling: np.ndarray, att_cols_dot: np.ndarray, i: int, v: np.ndarray, acc: np.ndarray,
-    rot: np.ndarray, omega: np.ndarray, lin: np.ndarray, tmp: np.ndarray, u: np.ndarray, out: np.ndarray,
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, i: int, v: np.ndarray, acc: np.ndarray, rot: np.ndarray,
+    omega: np.ndarray, lin: np.ndarray, tmp: np.ndarray, u: np.ndarray, out: np.ndarray,
 ) -> int:  # fmt: skip
-    """Body ``i``'s part of :func:`move` from the flexible bodies (the arrays as in ``ElasticArrays`` and the
-    Workspace): the attachments' columns on its path into the sum ``acc`` of v_c dS_c/dt; for a flexible body, the
-    elastic part R Ct xi_dot / m of its centre of mass's velocity into ``lin`` and w_b x Ct xi_dot / m (body axes;
-    Bdot v on its own mode columns is R times it) into ``out``. Returns the body's elastic index (-1 for a rigid
-    body). (Not inlined: see :func:`_ride_attachment`.)"""
+    """Body ``i``'s part of :func:`move` from the flexible bodies (``index``, ``data``, ``work``: see
+    :func:`_frames`; the others as in the Workspace): the attachments' columns on its path into the sum ``acc`` of
+    v_c dS_c/dt; for a flexible body, the elastic part R Ct xi_dot / m of its centre of mass's velocity into ``lin``
+    and w_b x Ct xi_dot / m (body axes; Bdot v on its own mode columns is R times it) into ``out`` (3,). Returns the
+    body's elastic index (-1 for a rigid body). (Not inlined: see :func:`_ride_attachment`.)"""
+    el = elastic_views(index, data)
+    on_path, of_body, att_parent, size, column, mass, coupling = el.on_path, el.of_body, el.parent, el.size, \
+        el.column, el.mass, el.coupling  # fmt: skip
+    att_cols_dot = elastic_work(index, work).att_cols_dot
     for att in range(att_parent.shape[0]):
         if on_path[i, att] == 0.0:
             continue
@@ -606,15 +652,18 @@ def _bdot(p: Plant, w: Workspace) -> np.ndarray:
             _cross(w.omega[i], rts, tmp)
             for a in range(3):
                 bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
-        el = p.elastic
+        if p.n_elastic == 0:
+            continue
+        el = elastic_views(p.elastic_index, p.elastic_data)
+        ew = elastic_work(p.elastic_index, w.elastic)
         for att in range(el.child.shape[0]):  # the columns of elastic attachments on the body's path
             if el.on_path[i, att] == 0.0:
                 continue
             e = el.of_body[el.parent[att]]
             for k in range(el.size[e]):
                 c = el.column[e] + k
-                s_att = w.att_cols[att, k]
-                sd_att = w.att_cols_dot[att, k]
+                s_att = ew.att_cols[att, k]
+                sd_att = ew.att_cols_dot[att, k]
                 _cross(w.lin[i], s_att[3:], tmp)
                 _cross(pi, sd_att[3:], tmp2)
                 for a in range(3):
@@ -642,7 +691,7 @@ def kinematics(p: Plant, q: np.ndarray, v: np.ndarray):
     """Rotations (n, 3, 3), CoM positions (n, 3), B (n_cart, nv), Bdot (n_cart, nv) and body angular velocities
     (n, 3)."""
     w = workspace(p)
-    elastic = p.elastic.body.shape[0] > 0
+    elastic = p.n_elastic > 0
     place(p, q, w, elastic)
     move(p, v, w, elastic)
     return w.rot, w.pos, w.b, _bdot(p, w), w.omega
@@ -787,17 +836,17 @@ def _hydrostatic_into(
         for j in range(modes.shape[0]):
             s += p.mode_stiffness[k, j] * q[p.cart_coordinate[modes[j]]]
         out[modes[k]] -= s
-    el = p.elastic
     if elastic:
-        _geometric_into(el.size, el.coordinate, el.row, el.geometric, q, out)
+        _geometric_into(p.elastic_index, p.elastic_data, q, out)
 
 
 @step_kernel
-def _geometric_into(
-    size: np.ndarray, coordinate: np.ndarray, row: np.ndarray, geometric: np.ndarray, q: np.ndarray, out: np.ndarray
-) -> None:
+def _geometric_into(index: np.ndarray, data: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """The flexible bodies' geometric stiffening -dU3/dxi, U3 = 1/2 sum G_mkl xi_m xi_k xi_l, added to their mode
-    rows of ``out`` (``ElasticArrays``; not inlined: see :func:`_ride_attachment`)."""
+    rows of ``out`` (``index``, ``data``: the plant's ``elastic_index``, ``elastic_data``; not inlined: see
+    :func:`_ride_attachment`)."""
+    el = elastic_views(index, data)
+    size, coordinate, row, geometric = el.size, el.coordinate, el.row, el.geometric
     for e in range(size.shape[0]):
         first = coordinate[e]
         r6 = row[e] + 6
@@ -816,7 +865,7 @@ def hydrostatic_force(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray)
     (n_cart,) [N, N m, J] at configuration ``q`` (with its frames ``rot``, ``pos``)."""
     n_h = p.hydro_index.shape[0]
     out = np.empty(p.static_force.shape[0])
-    _hydrostatic_into(p, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out, p.elastic.body.shape[0] > 0)
+    _hydrostatic_into(p, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out, p.n_elastic > 0)
     return out
 
 
@@ -843,10 +892,10 @@ def configure(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Wor
     an opaque call inside ``configure_core`` would keep numba from pruning its reference counts). Returns False
     when M* is not positive definite (a degenerate configuration).
 
-    A plant with flexible bodies (``Plant.elastic``) goes through :func:`configure_elastic` instead: the same
+    A plant with flexible bodies (``Plant.n_elastic`` > 0) goes through :func:`configure_elastic` instead: the same
     kernel compiled with their code, which the rigid one is compiled without (a constant flag through the inlined
     helpers; their loops would keep numba from pruning the rigid kernel's reference counts)."""
-    if p.elastic.body.shape[0] == 0:
+    if p.n_elastic == 0:
         ok = configure_core(p, q, hydro_force, t, w)
     else:
         ok = configure_elastic(p, q, hydro_force, t, w)
@@ -915,27 +964,32 @@ def _configure_body(
         # the tuples' arrays (measured, not understood); a call as the last statement costs only its own
         # arguments' counts
         return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
-    el = p.elastic  # flexible bodies: M(xi) in place of M(0)
-    _elastic_mass(
-        el.size, el.coordinate, el.mass, el.first_moment, el.coupling, el.rotational, el.second_moment,
-        el.inertia_first, el.inertia_second, el.gyroscopic, el.modal_mass, el.undeformed, el.active, q,
-        p.active_mass, w.active_mass, w.el_mass, w.el_dmass, w.vec, w.r_step,
+    # flexible bodies: M(xi) in place of M(0)
+    return _elastic_mass(
+        p.elastic_index, p.elastic_data, w.elastic, q, p.active_mass, w.bat, w.mass_work, w.mass, w.factor, w.vec,
+        w.r_step,
     )  # fmt: skip
-    return _factor_mass(w.bat, w.active_mass, w.mass_work, w.mass, w.factor)
 
 
 @step_kernel
 def _elastic_mass(
-    size: np.ndarray, coordinate: np.ndarray, mass: np.ndarray, first_moment: np.ndarray, coupling: np.ndarray,
-    rotational: np.ndarray, second_moment: np.ndarray, inertia_first: np.ndarray, inertia_second: np.ndarray,
-    gyroscopic: np.ndarray, modal_mass: np.ndarray, undeformed: np.ndarray, active_rows: np.ndarray, q: np.ndarray,
-    plant_active_mass: np.ndarray, active: np.ndarray, el_mass: np.ndarray, el_dmass: np.ndarray, sv: np.ndarray,
-    pm: np.ndarray,
-) -> None:  # fmt: skip
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, q: np.ndarray, plant_active_mass: np.ndarray,
+    bat: np.ndarray, mass_work: np.ndarray, mass_out: np.ndarray, factor: np.ndarray, sv: np.ndarray, pm: np.ndarray,
+) -> bool:  # fmt: skip
     """Each flexible body's M(xi) and dM/dxi about its instantaneous centre of mass (``ElasticBody.relative_mass``)
-    into ``el_mass``, ``el_dmass``, and into ``active``: ``plant_active_mass`` with M(xi) - M(0) added on their
-    active rotation and mode rows (the arrays as in ``ElasticArrays`` and the Workspace; ``sv`` (3,) and ``pm``
-    (3, 3) are scratch; not inlined: see :func:`_ride_attachment`)."""
+    into ``ElasticWork.mass``, ``dmass``, and into ``ElasticWork.active_mass``: ``plant_active_mass`` with
+    M(xi) - M(0) added on their active rotation and mode rows; then M* and its factor from it
+    (:func:`_factor_mass`, whose result it returns). ``index``, ``data``, ``work``: see :func:`_frames`; the others
+    as in the Plant and the Workspace; ``sv`` (3,) and ``pm`` (3, 3) are scratch; not inlined: see
+    :func:`_ride_attachment`."""
+    el = elastic_views(index, data)
+    size, coordinate, mass, first_moment, coupling, rotational = el.size, el.coordinate, el.mass, el.first_moment, \
+        el.coupling, el.rotational  # fmt: skip
+    second_moment, inertia_first, inertia_second, gyroscopic = el.second_moment, el.inertia_first, \
+        el.inertia_second, el.gyroscopic  # fmt: skip
+    modal_mass, undeformed, active_rows = el.modal_mass, el.undeformed, el.active
+    ew = elastic_work(index, work)
+    active, el_mass, el_dmass = ew.active_mass, ew.mass, ew.dmass
     for e in range(size.shape[0]):
         n_e = size[e]
         first = coordinate[e]
@@ -1020,6 +1074,7 @@ def _elastic_mass(
                 kb = active_rows[e, b]
                 if kb >= 0:
                     active[ka, kb] += el_mass[e, a, b] - undeformed[e, a, b]
+    return _factor_mass(bat, active, mass_work, mass_out, factor)
 
 
 @step_kernel
@@ -1037,7 +1092,7 @@ def respond(p: Plant, v: np.ndarray, newest: np.ndarray, command: np.ndarray, w:
     """Generalised accelerations at the velocities ``v`` and the configuration in ``w`` (:func:`configure`), into
     ``w.acc``, and the hydro velocities, PTO rates and forces: :func:`respond_core`, or :func:`respond_elastic` for
     a plant with flexible bodies (see :func:`configure`)."""
-    if p.elastic.body.shape[0] == 0:
+    if p.n_elastic == 0:
         respond_core(p, v, newest, command, w)
     else:
         respond_elastic(p, v, newest, command, w)
@@ -1076,10 +1131,9 @@ def _respond_body(
     # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows (none on the
     # rows of generalised modes); a flexible body's M(xi) and its quadratic-velocity vector instead
     if elastic:
-        el = p.elastic
         _elastic_inertial(
-            el.of_body, el.body, el.size, el.column, el.row, act, w.active_mass, w.bias, p.cart_axis, p.cart_body,
-            p.inertia, w.omega, v, w.el_mass, w.el_dmass, w.el_y, w.el_my, w.vec, w.vec2, w.quad, w.inertial,
+            p.elastic_index, p.elastic_data, w.elastic, act, w.bias, p.cart_axis, p.cart_body, p.inertia, w.omega, v,
+            w.vec, w.vec2, w.inertial,
         )  # fmt: skip
     for k in range(0 if elastic else m):
         s = 0.0
@@ -1131,17 +1185,20 @@ def _respond_body(
 
 @step_kernel
 def _elastic_inertial(
-    of_body: np.ndarray, body: np.ndarray, size: np.ndarray, column: np.ndarray, row: np.ndarray, act: np.ndarray,
-    active_mass: np.ndarray, bias: np.ndarray, cart_axis: np.ndarray, cart_body: np.ndarray, inertia: np.ndarray,
-    omega: np.ndarray, v: np.ndarray, el_mass: np.ndarray, el_dmass: np.ndarray, y: np.ndarray, my: np.ndarray,
-    tmp: np.ndarray, tmp2: np.ndarray, quad: np.ndarray, inertial: np.ndarray,
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, act: np.ndarray, bias: np.ndarray, cart_axis: np.ndarray,
+    cart_body: np.ndarray, inertia: np.ndarray, omega: np.ndarray, v: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray,
+    inertial: np.ndarray,
 ) -> None:  # fmt: skip
     """:func:`respond`'s -((M + A_inf) Bdot v + H B v) on the active rows, into ``inertial``, for a plant with
-    flexible bodies (the arrays as in the Plant, ``ElasticArrays`` and the Workspace): ``active_mass`` holds their
-    M(xi); on a rigid body's rotation rows H B v = w_b x J w_b, on a flexible body's rotation and mode rows its
-    quadratic-velocity vector (into ``quad``): with Y = (w_b, xi_dot), w_b x (M(xi) Y)[:3] (D M) plus
-    Mdot Y = sum_k xi_dot_k dM/dxi_k Y, and -1/2 Y' dM/dxi_j Y on mode j's row (``wecss.multibody._dynamics``).
-    (Not inlined: see :func:`_ride_attachment`.)"""
+    flexible bodies (``index``, ``data``, ``work``: see :func:`_frames`; the others as in the Plant and the
+    Workspace): ``ElasticWork.active_mass`` holds their M(xi); on a rigid body's rotation rows H B v = w_b x J w_b,
+    on a flexible body's rotation and mode rows its quadratic-velocity vector (into ``ElasticWork.quad``): with
+    Y = (w_b, xi_dot), w_b x (M(xi) Y)[:3] (D M) plus Mdot Y = sum_k xi_dot_k dM/dxi_k Y, and -1/2 Y' dM/dxi_j Y on
+    mode j's row (``wecss.multibody._dynamics``). (Not inlined: see :func:`_ride_attachment`.)"""
+    el = elastic_views(index, data)
+    of_body, body, size, column, row = el.of_body, el.body, el.size, el.column, el.row
+    ew = elastic_work(index, work)
+    active_mass, el_mass, el_dmass, y, my, quad = ew.active_mass, ew.mass, ew.dmass, ew.y, ew.my, ew.quad
     for e in range(body.shape[0]):
         i = body[e]
         n3 = 3 + size[e]
@@ -1233,7 +1290,7 @@ def accelerations(
 def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Velocities of the hydro DOFs (world axes) [m/s, rad/s]."""
     w = workspace(p)
-    place(p, q, w, p.elastic.body.shape[0] > 0)
+    place(p, q, w, p.n_elastic > 0)
     _hydro_jacobian(p, w)
     matvec(w.bh, v, w.u)
     return w.u
@@ -1311,15 +1368,12 @@ def poses(p: Plant, qs: np.ndarray):
     joint_twists, com0 = p.twists, p.com0
     rot, trans, pos, cols, vec, vec2, t_step, r_step, r_new = w.rot, w.trans, w.pos, w.cols, w.vec, w.vec2, \
         w.t_step, w.r_step, w.r_new  # fmt: skip
-    el = p.elastic
-    elastic = el.body.shape[0] > 0
-    of_body, of_child, el_size, el_coordinate, el_mass = el.of_body, el.of_child, el.size, el.coordinate, el.mass
-    el_first_moment, el_coupling, att_twists, att_cols = el.first_moment, el.coupling, el.twists, w.att_cols
+    elastic = p.n_elastic > 0
+    el_index, el_data, el_work = p.elastic_index, p.elastic_data, w.elastic
     for t in range(n_t):  # the arrays, not the tuples, in the call (see _frames)
         _frames(
             order, parent, col_start, q_start, n_cols, free, joint_twists, com0, qs[t], rot, trans, pos, cols, vec,
-            vec2, t_step, r_step, r_new, False, elastic, of_body, of_child, el_size, el_coordinate, el_mass,
-            el_first_moment, el_coupling, att_twists, att_cols,
+            vec2, t_step, r_step, r_new, False, elastic, el_index, el_data, el_work,
         )  # fmt: skip
         for i in range(n):
             for a in range(3):

@@ -23,6 +23,7 @@ from ..multibody import (
     kinematics,
 )
 from ._body_exact import PressureArrays, no_pressure
+from ._jit import inline_kernel
 from ._viscous import ViscousArrays, no_viscous
 
 
@@ -87,10 +88,14 @@ class Plant(NamedTuple):
         ``wecss.compiled._body_exact.PressureArrays`` (the body-exact hydrostatic and Froude-Krylov forces on the
         bodies' meshes; none when the scene asks for none)
     Flexible bodies
-        elastic : :class:`ElasticArrays` (empty arrays for a device of rigid bodies and generalised modes alone):
-        their mass block M(xi) about the instantaneous centre of mass replaces the rigid one on their rotation and
-        mode rows (so M* is rebuilt per configuration from ``active_mass`` plus M(xi) - M(0)), their centre of
-        mass moves with the modes, and the children on their elastic attachments move with the modes' columns
+        n_elastic : their number (0 for a device of rigid bodies and generalised modes alone: the kernels then take
+        the rigid path, which never reads the two arrays); elastic_index (int64) and elastic_data (float64): their
+        :class:`ElasticArrays` packed into two 1-D arrays (:func:`pack_elastic`; two arrays rather than 23, since
+        every opaque call of the time loop that takes the Plant counts each array it holds up and down; the
+        elastic kernels take views of them, :func:`elastic_views`, and so does :attr:`Plant.elastic`). Their mass
+        block M(xi) about the instantaneous centre of mass replaces the rigid one on their rotation and mode rows
+        (so M* is rebuilt per configuration from ``active_mass`` plus M(xi) - M(0)), their centre of mass moves
+        with the modes, and the children on their elastic attachments move with the modes' columns
     """
 
     order: np.ndarray
@@ -139,7 +144,15 @@ class Plant(NamedTuple):
     mooring_damping: np.ndarray
     viscous: ViscousArrays
     pressure: PressureArrays
-    elastic: ElasticArrays
+    n_elastic: int
+    elastic_index: np.ndarray
+    elastic_data: np.ndarray
+
+    @property
+    def elastic(self) -> ElasticArrays:
+        """The flexible bodies' arrays by name (views of ``elastic_index`` and ``elastic_data``; Python only, the
+        kernels call :func:`elastic_views`)."""
+        return _views(self.elastic_index, self.elastic_data)
 
 
 class ElasticArrays(NamedTuple):
@@ -163,6 +176,13 @@ class ElasticArrays(NamedTuple):
         twists : (n_att, nm, 6) the attachment's twists psi_k (world axes at the reference configuration)
         on_path : (n_body, n_att) 1 where the attachment is on a body's path to the ground (the body or an ancestor
         is its child): the parent's mode columns then move the body
+
+    The plant holds them packed (:func:`pack_elastic`): ``Plant.elastic_index`` (int64) is a header
+    (n_body, n_el, nm, n_att, m, n_cart; m the plant's active rows, n_cart its Cartesian rows) and then the integer
+    arrays flattened in the order of ``ELASTIC_INDEX_FIELDS`` (of_body and of_child first, so that the kernels read
+    a body's entries without views: :func:`elastic_of_body`, :func:`elastic_of_child`); ``Plant.elastic_data``
+    (float64) the float arrays in the order of ``ELASTIC_DATA_FIELDS``. :func:`elastic_views` gives them back as
+    views, by name.
     """
 
     of_body: np.ndarray
@@ -188,6 +208,118 @@ class ElasticArrays(NamedTuple):
     parent: np.ndarray
     twists: np.ndarray
     on_path: np.ndarray
+
+
+ELASTIC_HEADER = 6
+"""Entries of ``Plant.elastic_index`` before its arrays: n_body, n_el, nm, n_att, m, n_cart."""
+ELASTIC_INDEX_FIELDS = (
+    "of_body",
+    "of_child",
+    "body",
+    "size",
+    "column",
+    "coordinate",
+    "row",
+    "active",
+    "child",
+    "parent",
+)
+"""The integer arrays of :class:`ElasticArrays` in their order in ``Plant.elastic_index`` (after the header)."""
+ELASTIC_DATA_FIELDS = (
+    "mass", "first_moment", "coupling", "rotational", "second_moment", "inertia_first", "inertia_second",
+    "gyroscopic", "modal_mass", "geometric", "undeformed", "twists", "on_path",
+)  # fmt: skip
+"""The float arrays of :class:`ElasticArrays` in their order in ``Plant.elastic_data``."""
+
+
+def pack_elastic(el: ElasticArrays, m: int, n_cart: int) -> tuple[int, np.ndarray, np.ndarray]:
+    """``el`` packed for the plant: the number of flexible bodies, ``elastic_index`` (int64: the header, then the
+    integer arrays) and ``elastic_data`` (float64) (``m``: the plant's active rows, ``n_cart``: its Cartesian
+    rows; layout in :class:`ElasticArrays`)."""
+    n_el, nm = el.modal_mass.shape[0], el.modal_mass.shape[1]
+    header = np.array([el.of_body.shape[0], n_el, nm, el.child.shape[0], m, n_cart], dtype=np.int64)
+    index = np.concatenate(
+        [header, *(np.asarray(getattr(el, f), dtype=np.int64).ravel() for f in ELASTIC_INDEX_FIELDS)]
+    )
+    data = np.concatenate(
+        [np.zeros(0), *(np.asarray(getattr(el, f), dtype=float).ravel() for f in ELASTIC_DATA_FIELDS)]
+    )
+    return n_el, np.ascontiguousarray(index), np.ascontiguousarray(data)
+
+
+def _views(index: np.ndarray, data: np.ndarray) -> ElasticArrays:
+    """:func:`elastic_views` (plain; the kernels call it compiled and inlined)."""
+    n, n_el, nm, n_att = index[0], index[1], index[2], index[3]
+    k = 3 + nm
+    o = ELASTIC_HEADER
+    of_body = index[o : o + n]
+    o += n
+    of_child = index[o : o + n]
+    o += n
+    body = index[o : o + n_el]
+    o += n_el
+    size = index[o : o + n_el]
+    o += n_el
+    column = index[o : o + n_el]
+    o += n_el
+    coordinate = index[o : o + n_el]
+    o += n_el
+    row = index[o : o + n_el]
+    o += n_el
+    active = index[o : o + n_el * k].reshape((n_el, k))
+    o += n_el * k
+    child = index[o : o + n_att]
+    o += n_att
+    parent = index[o : o + n_att]
+    f = 0
+    mass = data[f : f + n_el]
+    f += n_el
+    first_moment = data[f : f + n_el * 3].reshape((n_el, 3))
+    f += n_el * 3
+    coupling = data[f : f + n_el * 3 * nm].reshape((n_el, 3, nm))
+    f += n_el * 3 * nm
+    rotational = data[f : f + n_el * 3 * nm].reshape((n_el, 3, nm))
+    f += n_el * 3 * nm
+    second_moment = data[f : f + n_el * 9].reshape((n_el, 3, 3))
+    f += n_el * 9
+    inertia_first = data[f : f + n_el * nm * 9].reshape((n_el, nm, 3, 3))
+    f += n_el * nm * 9
+    inertia_second = data[f : f + n_el * nm * nm * 9].reshape((n_el, nm, nm, 3, 3))
+    f += n_el * nm * nm * 9
+    gyroscopic = data[f : f + n_el * nm * nm * 3].reshape((n_el, nm, nm, 3))
+    f += n_el * nm * nm * 3
+    modal_mass = data[f : f + n_el * nm * nm].reshape((n_el, nm, nm))
+    f += n_el * nm * nm
+    geometric = data[f : f + n_el * nm * nm * nm].reshape((n_el, nm, nm, nm))
+    f += n_el * nm * nm * nm
+    undeformed = data[f : f + n_el * k * k].reshape((n_el, k, k))
+    f += n_el * k * k
+    twists = data[f : f + n_att * nm * 6].reshape((n_att, nm, 6))
+    f += n_att * nm * 6
+    on_path = data[f : f + n * n_att].reshape((n, n_att))
+    return ElasticArrays(
+        of_body, body, size, column, coordinate, row, mass, first_moment, coupling, rotational, second_moment,
+        inertia_first, inertia_second, gyroscopic, modal_mass, geometric, undeformed, active, of_child, child, parent,
+        twists, on_path,
+    )  # fmt: skip
+
+
+elastic_views = inline_kernel(_views)
+"""The :class:`ElasticArrays` of a plant's ``elastic_index`` and ``elastic_data`` (views of them, numba-compiled
+and inlined into the elastic kernels; ``Plant.elastic`` in Python)."""
+
+
+@inline_kernel
+def elastic_of_body(index: np.ndarray, i: int) -> int:
+    """``of_body[i]`` of a plant's ``elastic_index`` (no view: a kernel without flexible bodies' views pays no
+    reference counts for it)."""
+    return index[ELASTIC_HEADER + i]
+
+
+@inline_kernel
+def elastic_of_child(index: np.ndarray, i: int) -> int:
+    """``of_child[i]`` of a plant's ``elastic_index`` (see :func:`elastic_of_body`)."""
+    return index[ELASTIC_HEADER + index[0] + i]
 
 
 def elastic_arrays(model: Multibody, active: np.ndarray) -> ElasticArrays:
@@ -440,6 +572,7 @@ def build_plant(
     if extra_mass is not None:
         total = total + extra_mass
     active = moving_rows(model)
+    n_elastic, elastic_index, elastic_data = pack_elastic(elastic_arrays(model, active), active.size, model.n_cart)
     return Plant(
         **_tree_arrays(model),
         **_cartesian_arrays(model),
@@ -459,7 +592,9 @@ def build_plant(
         mooring_damping=np.ascontiguousarray(mooring_h),
         viscous=no_viscous() if viscous is None else viscous,
         pressure=no_pressure() if pressure is None else pressure,
-        elastic=elastic_arrays(model, active),
+        n_elastic=n_elastic,
+        elastic_index=elastic_index,
+        elastic_data=elastic_data,
     )
 
 
