@@ -400,15 +400,6 @@ def _device_parts(
         device = _device(name).with_elastic_model()
     except ValueError as err:
         raise SceneError(str(err)) from None
-    for pto in device.ptos:
-        ends = [b for b in (getattr(pto, "body_a", None), getattr(pto, "body_b", None)) if b in device.elastic_bodies]
-        if ends:
-            raise SceneError(
-                f"device {device.name!r}: PTO {pto.name!r} has an end on the elastic body {ends[0]!r}; the compiled "
-                "plant does not carry an actuator's end on a flexible body's node yet (wecss.multibody does: its "
-                "attachment 'pto:<name>'): run the body rigid (flexible.dynamics = 'frozen'), or put the PTO on "
-                "a joint"
-            )
     try:
         database = device.hydro(hydro)
     except FileNotFoundError as err:

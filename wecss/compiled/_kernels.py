@@ -796,7 +796,105 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
     x = np.zeros(n_pto)
     gmat = np.zeros((n_pto, b.shape[1]))
     _pto_strokes_into(p, q, rot, pos, b, x, gmat)
+    if p.n_elastic > 0:
+        work = np.zeros(elastic_work_size(p.elastic_index))
+        _elastic_pto_ends(
+            p.elastic_index, p.elastic_data, work, q, rot, pos, b, p.com0, p.cart_start, p.pto_body_a, p.pto_body_b,
+            p.pto_point_a, p.pto_point_b, x, gmat,
+        )  # fmt: skip
     return x, gmat
+
+
+@step_kernel
+def _elastic_pto_ends(
+    index: np.ndarray, data: np.ndarray, work: np.ndarray, q: np.ndarray, rot: np.ndarray, pos: np.ndarray,
+    b: np.ndarray, com0: np.ndarray, cart_start: np.ndarray, body_a: np.ndarray, body_b: np.ndarray,
+    point_a: np.ndarray, point_b: np.ndarray, x: np.ndarray, gmat: np.ndarray,
+) -> None:  # fmt: skip
+    """The strokes and transmissions of the actuators with an end on a flexible body, over
+    :func:`_pto_strokes_into`'s (``index``, ``data``, ``work``: see :func:`_frames`; the others as in the Plant).
+
+    Such an end rides on its attachment (``wecss.multibody``: ``KinematicState.point``): at
+    G_i prod_k exp(psi_k xi_k) X0 (X0 its reference point, G_i its body's frame: t_i = p_i - R_i c_i(xi)), with
+    the velocity Jacobian v_c + w_c x (X - p_i) on the columns that move the body's frame (B's rows: the centre of
+    mass's velocity v_c, R times the body-axis angular velocity w_c) and u_k + w_k x X on the body's own mode
+    columns ((u_k, w_k) = Ad(G) psi_k, the attachment's world twists). An end on a rigid body: as in
+    :func:`_pto_strokes_into`."""
+    el = elastic_views(index, data)
+    att_cols = elastic_work(index, work).att_cols
+    nv = b.shape[1]
+    ends = np.zeros((2, 3))
+    arms = np.zeros((2, 3))
+    r = np.empty((3, 3))
+    t = np.empty(3)
+    centre = np.empty(3)
+    tmp = np.empty(3)
+    tmp2 = np.empty(3)
+    t_step = np.empty(3)
+    r_step = np.empty((3, 3))
+    r_new = np.empty((3, 3))
+    for k in range(el.pto_end.shape[0]):
+        if el.pto_end[k, 0] < 0 and el.pto_end[k, 1] < 0:
+            continue
+        for e in range(2):
+            body = body_a[k] if e == 0 else body_b[k]
+            point = point_a[k] if e == 0 else point_b[k]
+            att = el.pto_end[k, e]
+            if body < 0:
+                for a in range(3):
+                    ends[e, a] = point[a]
+                continue
+            if att < 0:  # a rigid body's point: R point from its centre of mass
+                _rotate(rot[body], point, tmp)
+                for a in range(3):
+                    arms[e, a] = tmp[a]
+                    ends[e, a] = pos[body, a] + tmp[a]
+                continue
+            _elastic_centre(index, data, com0, body, el.of_body[body], q, centre)
+            _rotate(rot[body], centre, tmp)
+            for a in range(3):
+                t[a] = pos[body, a] - tmp[a]
+                for c in range(3):
+                    r[a, c] = rot[body, a, c]
+            _ride_attachment(index, data, work, att, q, r, t, True, tmp, tmp2, t_step, r_step, r_new)
+            for a in range(3):
+                centre[a] = com0[body, a] + point[a]  # the reference point X0
+            _rotate(r, centre, tmp)
+            for a in range(3):
+                ends[e, a] = tmp[a] + t[a]
+                arms[e, a] = ends[e, a] - pos[body, a]
+        d0, d1, d2 = ends[0, 0] - ends[1, 0], ends[0, 1] - ends[1, 1], ends[0, 2] - ends[1, 2]
+        length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+        x[k] = length
+        n0, n1, n2 = d0 / length, d1 / length, d2 / length
+        for c in range(nv):
+            gmat[k, c] = 0.0
+        for e in range(2):
+            body = body_a[k] if e == 0 else body_b[k]
+            if body < 0:
+                continue
+            sign = 1.0 if e == 0 else -1.0
+            att = el.pto_end[k, e]
+            fe = el.of_body[body] if att >= 0 else -1
+            own0 = el.column[fe] if fe >= 0 else 0
+            own1 = own0 + el.size[fe] if fe >= 0 else 0
+            rb = rot[body]
+            r0 = cart_start[body]
+            for c in range(nv):
+                if own0 <= c < own1:  # the body's own mode: the attachment's world twist at the end
+                    s = att_cols[att, c - own0]
+                    j0 = s[0] + s[4] * ends[e, 2] - s[5] * ends[e, 1]
+                    j1 = s[1] + s[5] * ends[e, 0] - s[3] * ends[e, 2]
+                    j2 = s[2] + s[3] * ends[e, 1] - s[4] * ends[e, 0]
+                else:  # the body's frame: its centre of mass's velocity and (R w) x arm
+                    w0, w1, w2 = b[r0 + 3, c], b[r0 + 4, c], b[r0 + 5, c]
+                    o0 = rb[0, 0] * w0 + rb[0, 1] * w1 + rb[0, 2] * w2
+                    o1 = rb[1, 0] * w0 + rb[1, 1] * w1 + rb[1, 2] * w2
+                    o2 = rb[2, 0] * w0 + rb[2, 1] * w1 + rb[2, 2] * w2
+                    j0 = b[r0, c] + o1 * arms[e, 2] - o2 * arms[e, 1]
+                    j1 = b[r0 + 1, c] + o2 * arms[e, 0] - o0 * arms[e, 2]
+                    j2 = b[r0 + 2, c] + o0 * arms[e, 1] - o1 * arms[e, 0]
+                gmat[k, c] += sign * (n0 * j0 + n1 * j1 + n2 * j2)
 
 
 @inline_kernel
@@ -953,6 +1051,11 @@ def _configure_body(
         w.gen_config[c] = 0.0
     matvec_t_add(w.b, force, w.gen_config)
     _pto_strokes_into(p, q, w.rot, w.pos, w.b, w.stroke, w.gmat)
+    if elastic:  # an actuator's end on a flexible body rides on its node
+        _elastic_pto_ends(
+            p.elastic_index, p.elastic_data, w.elastic, q, w.rot, w.pos, w.b, p.com0, p.cart_start, p.pto_body_a,
+            p.pto_body_b, p.pto_point_a, p.pto_point_b, w.stroke, w.gmat,
+        )  # fmt: skip
     for k in range(w.stroke.shape[0]):
         w.stroke[k] -= p.pto_rest[k]
     act = p.active

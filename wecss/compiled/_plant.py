@@ -7,6 +7,7 @@ kernels in ``_kernels`` read only these arrays.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from enum import IntEnum
 from typing import NamedTuple
 
@@ -176,9 +177,12 @@ class ElasticArrays(NamedTuple):
         twists : (n_att, nm, 6) the attachment's twists psi_k (world axes at the reference configuration)
         on_path : (n_body, n_att) 1 where the attachment is on a body's path to the ground (the body or an ancestor
         is its child): the parent's mode columns then move the body
+    Actuator PTOs' ends on flexible bodies (an end rides on its body's attachment ``pto:<name>``, appended to the
+    attachments above with child -1, on no body's path)
+        pto_end : (n_pto, 2) the attachment of each end (a, b), -1 for an end on a rigid body or the ground
 
     The plant holds them packed (:func:`pack_elastic`): ``Plant.elastic_index`` (int64) is a header
-    (n_body, n_el, nm, n_att, m, n_cart; m the plant's active rows, n_cart its Cartesian rows) and then the integer
+    (n_body, n_el, nm, n_att, m, n_cart, n_pto; m the plant's active rows, n_cart its Cartesian rows) and then the integer
     arrays flattened in the order of ``ELASTIC_INDEX_FIELDS`` (of_body and of_child first, so that the kernels read
     a body's entries without views: :func:`elastic_of_body`, :func:`elastic_of_child`); ``Plant.elastic_data``
     (float64) the float arrays in the order of ``ELASTIC_DATA_FIELDS``. :func:`elastic_views` gives them back as
@@ -208,10 +212,11 @@ class ElasticArrays(NamedTuple):
     parent: np.ndarray
     twists: np.ndarray
     on_path: np.ndarray
+    pto_end: np.ndarray
 
 
-ELASTIC_HEADER = 6
-"""Entries of ``Plant.elastic_index`` before its arrays: n_body, n_el, nm, n_att, m, n_cart."""
+ELASTIC_HEADER = 7
+"""Entries of ``Plant.elastic_index`` before its arrays: n_body, n_el, nm, n_att, m, n_cart, n_pto."""
 ELASTIC_INDEX_FIELDS = (
     "of_body",
     "of_child",
@@ -223,6 +228,7 @@ ELASTIC_INDEX_FIELDS = (
     "active",
     "child",
     "parent",
+    "pto_end",
 )
 """The integer arrays of :class:`ElasticArrays` in their order in ``Plant.elastic_index`` (after the header)."""
 ELASTIC_DATA_FIELDS = (
@@ -237,7 +243,7 @@ def pack_elastic(el: ElasticArrays, m: int, n_cart: int) -> tuple[int, np.ndarra
     integer arrays) and ``elastic_data`` (float64) (``m``: the plant's active rows, ``n_cart``: its Cartesian
     rows; layout in :class:`ElasticArrays`)."""
     n_el, nm = el.modal_mass.shape[0], el.modal_mass.shape[1]
-    header = np.array([el.of_body.shape[0], n_el, nm, el.child.shape[0], m, n_cart], dtype=np.int64)
+    header = np.array([el.of_body.shape[0], n_el, nm, el.child.shape[0], m, n_cart, el.pto_end.shape[0]], dtype=np.int64)
     index = np.concatenate(
         [header, *(np.asarray(getattr(el, f), dtype=np.int64).ravel() for f in ELASTIC_INDEX_FIELDS)]
     )
@@ -271,6 +277,8 @@ def _views(index: np.ndarray, data: np.ndarray) -> ElasticArrays:
     child = index[o : o + n_att]
     o += n_att
     parent = index[o : o + n_att]
+    o += n_att
+    pto_end = index[o : o + 2 * index[6]].reshape((index[6], 2))
     f = 0
     mass = data[f : f + n_el]
     f += n_el
@@ -300,7 +308,7 @@ def _views(index: np.ndarray, data: np.ndarray) -> ElasticArrays:
     return ElasticArrays(
         of_body, body, size, column, coordinate, row, mass, first_moment, coupling, rotational, second_moment,
         inertia_first, inertia_second, gyroscopic, modal_mass, geometric, undeformed, active, of_child, child, parent,
-        twists, on_path,
+        twists, on_path, pto_end,
     )  # fmt: skip
 
 
@@ -322,8 +330,9 @@ def elastic_of_child(index: np.ndarray, i: int) -> int:
     return index[ELASTIC_HEADER + index[0] + i]
 
 
-def elastic_arrays(model: Multibody, active: np.ndarray) -> ElasticArrays:
-    """The :class:`ElasticArrays` of ``model`` (``active``: the plant's active Cartesian rows)."""
+def elastic_arrays(model: Multibody, active: np.ndarray, ptos: Sequence[PTO] = ()) -> ElasticArrays:
+    """The :class:`ElasticArrays` of ``model`` (``active``: the plant's active Cartesian rows; ``ptos``: the
+    plant's, whose actuators' ends on a flexible body ride on its attachment ``pto:<name>``)."""
     n = len(model.bodies)
     bodies = list(model.elastic_bodies)
     n_el = len(bodies)
@@ -387,6 +396,24 @@ def elastic_arrays(model: Multibody, active: np.ndarray) -> ElasticArrays:
             on_path[i] = on_path[model.parent[i]]
         if of_child[i] >= 0:
             on_path[i, of_child[i]] = 1.0
+    # actuators' ends on flexible bodies: attachments of their own (no child, on no path)
+    pto_end = np.full((len(ptos), 2), -1, dtype=np.int64)
+    children, parents, extra = list(attached), [model.parent[i] for i in attached], []
+    for k, pto in enumerate(ptos):
+        if not isinstance(pto, ActuatorPTO):
+            continue
+        for end, name in enumerate((pto.body_a, pto.body_b)):
+            if name is None or (el := model.body(name).elastic) is None:
+                continue
+            pto_end[k, end] = len(children)
+            children.append(-1)
+            parents.append(model.body_names.index(name))
+            shapes = np.zeros((nm, 6))
+            shapes[: el.n] = el.attachment(f"pto:{pto.name}").twists
+            extra.append(shapes)
+    if extra:
+        twists = np.concatenate([twists, np.array(extra)])
+        on_path = np.concatenate([on_path, np.zeros((n, len(extra)))], axis=1)
     return ElasticArrays(
         of_body=of_body,
         body=np.asarray(bodies, dtype=np.int64),
@@ -407,10 +434,11 @@ def elastic_arrays(model: Multibody, active: np.ndarray) -> ElasticArrays:
         undeformed=undeformed,
         active=active_rows,
         of_child=of_child,
-        child=np.asarray(attached, dtype=np.int64),
-        parent=np.asarray([model.parent[i] for i in attached], dtype=np.int64),
+        child=np.asarray(children, dtype=np.int64),
+        parent=np.asarray(parents, dtype=np.int64),
         twists=twists,
         on_path=on_path,
+        pto_end=pto_end,
     )
 
 
@@ -572,7 +600,7 @@ def build_plant(
     if extra_mass is not None:
         total = total + extra_mass
     active = moving_rows(model)
-    n_elastic, elastic_index, elastic_data = pack_elastic(elastic_arrays(model, active), active.size, model.n_cart)
+    n_elastic, elastic_index, elastic_data = pack_elastic(elastic_arrays(model, active, ptos), active.size, model.n_cart)
     return Plant(
         **_tree_arrays(model),
         **_cartesian_arrays(model),
