@@ -1,5 +1,5 @@
 """Runs of the NOTC device with its arm elastic (issue 28): the regular fatigue sea state (H 0.28 m, T 6.2 s, 40
-periods) and a 30-minute JONSWAP sea (Hs 1 m, Tp 6.2 s), with the generalised-alpha runner at dt 0.05 s (the wave
+periods) and a 30-minute JONSWAP sea (Hs 0.5 m, Tp 6.2 s), with the generalised-alpha runner at dt 0.05 s (the wave
 step: the arm's modes are too fast for an explicit step), against the rigid device (its arm frozen) in the same
 scenes with the same runner and step, and with Beeman (the default runner) at dt 0.05 s.
 
@@ -76,7 +76,7 @@ def main() -> None:
     repeats = 1 if args.quick else args.repeats
     periods, minutes = (4, 2.0) if args.quick else (40, 30.0)
     regular = {"kind": "regular", "height": 0.28, "period": T, "duration": periods * T, "ramp": T}
-    irregular = {"kind": "jonswap", "height": 1.0, "period": T, "duration": minutes * 60.0, "ramp": 2 * T}
+    irregular = {"kind": "jonswap", "height": 0.5, "period": T, "duration": minutes * 60.0, "ramp": 2 * T}
     with tempfile.TemporaryDirectory() as folder:
         flexible = elastic_spec(Path(folder))
         rows = []
@@ -90,8 +90,10 @@ def main() -> None:
                       f"call {call:7.3f} s  {1e6 * loop / steps:7.1f} us/step", flush=True)  # fmt: skip
     if args.quick:
         return
-    table = ["| sea | model, runner (dt 0.05 s) | steps | evaluations per step | loop [s] | call [s] | loop per step [us] |",
-             "|---|---|---|---|---|---|---|"]  # fmt: skip
+    table = [
+        "| sea | model, runner (dt 0.05 s) | steps | evaluations per step | loop [s] | call [s] | loop per step [us] |",
+        "|---|---|---|---|---|---|---|",
+    ]
     table += [f"| {a} | {b} | {c} | {d:.2f} | {e:.3f} | {f:.3f} | {g:.1f} |" for a, b, c, d, e, f, g in rows]
     ratio = {label: rows[i][6] / rows[i + 1][6] for i, label in ((0, "regular"), (3, "irregular"))}
     text = "\n".join([

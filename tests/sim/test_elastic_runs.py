@@ -63,7 +63,8 @@ def test_the_elastic_arm_enters_the_plant(elastic_spec):
 def test_explicit_schemes_refuse_a_step_the_elastic_modes_cannot_take(elastic_spec, method):
     """At the wave step the arm's stiff modal coordinates make both explicit schemes unstable: refused, with the step
     that would do. The oracle: the eigenvalues s of the multibody core's equations linearised at the equilibrium
-    (M*(q0) with the database's A_inf, the static stiffness, the cylinder's damping on its node and the arm's structural damping); RK4's largest step keeps
+    (M*(q0) with the database's A_inf, the static stiffness, the cylinder's damping on its node and the arm's
+    structural damping); RK4's largest step keeps
     every 1.1 s dt inside |R(z)| <= 1 (found here by bisection; the check also visits other configurations, so
     its step may only be shorter), Beeman's keeps 1.1 omega dt <= 2 for the undamped frequencies (its position
     step is explicit, like Stormer-Verlet's; damping goes through its implicit corrector)."""
@@ -140,7 +141,8 @@ def test_loads_are_refused_for_an_elastic_device(elastic_spec):
 def test_the_linear_model_s_state_matrix_is_the_jacobian_of_the_elastic_equations(elastic_spec):
     """The state matrix of the linear model (radiation states included) against central differences of the
     nonlinear right-hand side of the compiled plant (its kernels: M*(q) with the arm's M(xi), the quadratic-velocity
-    terms, the cylinder on the arm's node, the geometric stiffening) about the equilibrium, to 1e-8 of its largest entry and of each
+    terms, the cylinder on the arm's node, the geometric stiffening) about the equilibrium, to 1e-8 of its largest
+    entry and of each
     block's (stiffness, damping, radiation coupling both ways). Central differences of step 1e-6 in the
     configuration and the velocities, 1 in the radiation states (the right-hand side is linear in them)."""
     from wecss.compiled.kernels import accelerations, integrate_configuration

@@ -159,7 +159,8 @@ class Plant(NamedTuple):
 class ElasticArrays(NamedTuple):
     """The flexible bodies of a plant (``Body.elastic``, floating frame: ``wecss.multibody._elastic``) as padded
     arrays; all empty (first dimension 0) for a plant without them, whose kernels then never read them. ``n_el``
-    flexible bodies with at most ``nm`` modal coordinates each, ``n_att`` elastic attachments carrying a child.
+    flexible bodies with at most ``nm`` modal coordinates each, ``n_att`` elastic attachments (carrying a child or an
+    actuator's end).
 
     Flexible bodies
         of_body : (n_body,) index of a body's elastic model, -1 for a rigid body; body : (n_el,) its body
@@ -182,11 +183,11 @@ class ElasticArrays(NamedTuple):
         pto_end : (n_pto, 2) the attachment of each end (a, b), -1 for an end on a rigid body or the ground
 
     The plant holds them packed (:func:`pack_elastic`): ``Plant.elastic_index`` (int64) is a header
-    (n_body, n_el, nm, n_att, m, n_cart, n_pto; m the plant's active rows, n_cart its Cartesian rows) and then the integer
-    arrays flattened in the order of ``ELASTIC_INDEX_FIELDS`` (of_body and of_child first, so that the kernels read
-    a body's entries without views: :func:`elastic_of_body`, :func:`elastic_of_child`); ``Plant.elastic_data``
-    (float64) the float arrays in the order of ``ELASTIC_DATA_FIELDS``. :func:`elastic_views` gives them back as
-    views, by name.
+    (n_body, n_el, nm, n_att, m, n_cart, n_pto; m the plant's active rows, n_cart its Cartesian rows) and then the
+    integer arrays flattened in the order of ``ELASTIC_INDEX_FIELDS`` (of_body and of_child first, so that the
+    kernels read a body's entries without views: :func:`elastic_of_body`, :func:`elastic_of_child`);
+    ``Plant.elastic_data`` (float64) the float arrays in the order of ``ELASTIC_DATA_FIELDS``. :func:`elastic_views`
+    gives them back as views, by name.
     """
 
     of_body: np.ndarray
@@ -243,7 +244,8 @@ def pack_elastic(el: ElasticArrays, m: int, n_cart: int) -> tuple[int, np.ndarra
     integer arrays) and ``elastic_data`` (float64) (``m``: the plant's active rows, ``n_cart``: its Cartesian
     rows; layout in :class:`ElasticArrays`)."""
     n_el, nm = el.modal_mass.shape[0], el.modal_mass.shape[1]
-    header = np.array([el.of_body.shape[0], n_el, nm, el.child.shape[0], m, n_cart, el.pto_end.shape[0]], dtype=np.int64)
+    sizes = [el.of_body.shape[0], n_el, nm, el.child.shape[0], m, n_cart, el.pto_end.shape[0]]
+    header = np.array(sizes, dtype=np.int64)
     index = np.concatenate(
         [header, *(np.asarray(getattr(el, f), dtype=np.int64).ravel() for f in ELASTIC_INDEX_FIELDS)]
     )
@@ -600,7 +602,8 @@ def build_plant(
     if extra_mass is not None:
         total = total + extra_mass
     active = moving_rows(model)
-    n_elastic, elastic_index, elastic_data = pack_elastic(elastic_arrays(model, active, ptos), active.size, model.n_cart)
+    elastic = elastic_arrays(model, active, ptos)
+    n_elastic, elastic_index, elastic_data = pack_elastic(elastic, active.size, model.n_cart)
     return Plant(
         **_tree_arrays(model),
         **_cartesian_arrays(model),

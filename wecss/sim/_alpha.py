@@ -8,7 +8,10 @@ J = S^-1 M* is made once per run from the linear model about the equilibrium (S 
 a step costs a few evaluations of the equations (one per iteration) whatever the stiffness. The iteration stops
 when its step J r (r = v_dot1 - a) is below ``solver.corrector_tol`` of the largest acceleration (plus
 ``ACCELERATION_FLOOR``): the step, not the residual, since the residual of an unresolved stiff mode stays large
-(its round-off and its unresolved oscillation) where its step is tiny. The radiation states
+(its round-off and its unresolved oscillation) where its step is tiny. Where the iteration stops contracting (a
+motion far from the equilibrium, where the linear model's matrix no longer fits), the matrix is made again from
+differences of the equations at the iterate (nv evaluations) and kept for the steps after; the result's
+``iteration_matrix_refreshes`` counts them. The radiation states
 (state-space memory) follow the trapezoidal rule, A-stable like the scheme, with the hydro velocities of the last
 iterate. With rho_inf = :data:`SPECTRAL_RADIUS` the modes far above 1/h lose 20 % of their amplitude per step
 (numerical damping of what the step cannot resolve), and the wave-frequency motion is second-order accurate.
@@ -43,6 +46,10 @@ from ._loop import (
 
 SPECTRAL_RADIUS: float = 0.8
 """rho_inf of the scheme: the amplification of the modes far above 1/h per step."""
+
+REFRESH_AFTER: int = 6
+"""Newton iterations of a step after which an iteration that stops contracting (its step above half the last one)
+makes its matrix again."""
 
 
 @kernel
@@ -87,9 +94,11 @@ def alpha_chunk(
         u1[:] = u_now
         matvec(r.input_real, u_now, drive0.view(np.float64))  # a real matrix onto the states' real/imag parts
         converged = False
+        refreshed = False
         count = 0
+        previous = np.inf
         q1 = q
-        for _ in range(max_iter):
+        for iteration in range(max_iter):
             for c in range(nv):
                 a1[c] = ((1.0 - alpha_f) * vd[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
             q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
@@ -114,6 +123,16 @@ def alpha_chunk(
             # (their static loads cancel) is far above the floor, and their step J r far below it
             step = jacobian @ residual
             change = np.max(np.abs(step))
+            if iteration >= REFRESH_AFTER and change > 0.5 * previous and not refreshed:
+                # slow or no contraction (a motion far from the equilibrium): the matrix made again, here, from
+                # the equations' differences (nv evaluations; kept for the steps after)
+                refreshed = True
+                out.evaluations[2] += 1
+                _refresh(p, q, v, a, acc, vd, residual, e1 + rad, t1, command, w, coefficients, h, jacobian)
+                count += nv
+                step = jacobian @ residual
+                change = np.max(np.abs(step))
+            previous = change
             if not np.isfinite(change):
                 return LoopStatus.NOT_FINITE, n1
             vd -= step
@@ -146,6 +165,48 @@ def alpha_chunk(
             return LoopStatus.STROKE_LIMIT, n1
         record_step(out, n1, p, (q, v, acc, w.stroke, w.xdot, w.f, rad, e1, w.terms.out.reshape(-1)))
     return LoopStatus.OK, step0 + n_steps
+
+
+@kernel
+def _refresh(
+    p: Plant,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    acc: np.ndarray,
+    vd: np.ndarray,
+    residual: np.ndarray,
+    hydro_force: np.ndarray,
+    t1: float,
+    command: np.ndarray,
+    w: Workspace,
+    coefficients: np.ndarray,
+    h: float,
+    jacobian: np.ndarray,
+) -> None:
+    """The iteration's matrix J made again at the iterate ``vd`` (its residual ``residual``): the inverse of the
+    residual's derivative, by forward differences of the equations (their memory force held), into
+    ``jacobian``."""
+    alpha_m, alpha_f, gamma, beta = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
+    nv = vd.shape[0]
+    derivative = np.empty((nv, nv))
+    trial = vd.copy()
+    a1 = np.empty(nv)
+    v1 = np.empty(nv)
+    none = np.zeros((hydro_force.shape[0], hydro_force.shape[0]))
+    for col in range(nv):
+        eps = 1e-7 * max(1.0, abs(vd[col]))
+        trial[col] = vd[col] + eps
+        for c in range(nv):
+            a1[c] = ((1.0 - alpha_f) * trial[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
+            v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
+        q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
+        configure(p, q1, hydro_force, t1, w)
+        respond(p, v1, none, command, w)
+        for c in range(nv):
+            derivative[c, col] = (trial[c] - w.acc[c] - residual[c]) / eps
+        trial[col] = vd[col]
+    jacobian[:, :] = np.linalg.inv(derivative)
 
 
 class GeneralizedAlphaRunner(FixedStepRunner):
@@ -187,6 +248,7 @@ class GeneralizedAlphaRunner(FixedStepRunner):
             "spectral_radius": SPECTRAL_RADIUS,
             "evaluations_per_step": float(evaluations[0]) / max(1, n_steps),
             "max_evaluations_per_step": int(evaluations[1]),
+            "iteration_matrix_refreshes": int(evaluations[2]),
         }
 
     def failure(self, status: LoopStatus, controlled: ControlledScene) -> str | None:
