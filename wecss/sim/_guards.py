@@ -136,11 +136,17 @@ def check_rk4(compiled: CompiledScene) -> None:
 
 
 def stiff_pto_hint(compiled: CompiledScene) -> str:
-    """A sentence for a divergence message: the PTO gains when the fastest mode they give is coarsely stepped,
-    else the step and the device."""
+    """A sentence for a divergence message: the elastic bodies, or the PTO gains, when the fastest mode they give
+    is coarsely stepped, else the step and the device."""
     gains = _gains(compiled)
     rate = fastest_mode(compiled)
     steps = 2 * np.pi / (rate * compiled.dt) if rate > 0 else np.inf
+    if steps < GOOD_STEPS_PER_MODE and elastic_cause(compiled):
+        return (
+            f" The elastic bodies {list(compiled.device.elastic_bodies)} set the fastest mode (|s| = {rate:.4g} "
+            "rad/s): with an explicit runner give a smaller solver.dt; with generalized-alpha, a motion far from the "
+            "equilibrium (its iteration matrix's) may need a smaller solver.dt."
+        )
     if gains and steps < GOOD_STEPS_PER_MODE:
         return (
             f" A stiff PTO is the likely cause: with the PTO gains ({gains} [SI]) the fastest mode |s| = {rate:.4g} "
@@ -157,13 +163,20 @@ def stiff_pto_hint(compiled: CompiledScene) -> str:
 
 def step_notes(compiled: CompiledScene) -> list[str]:
     """A note when the step resolves the fastest mode (PTO gains included) with fewer than GOOD_STEPS_PER_MODE
-    steps per period."""
+    steps per period (with generalised-alpha and elastic bodies' modes the fastest: that the scheme damps them)."""
     rate = fastest_mode(compiled)
     if rate <= 0:
         return []
     steps = 2 * np.pi / (rate * compiled.dt)
     if steps >= GOOD_STEPS_PER_MODE:
         return []
+    if elastic_cause(compiled) and compiled.scene.runner.name == "generalized-alpha":
+        return [
+            f"solver.dt ({compiled.dt:.4g} s) does not resolve the elastic bodies' fastest modes (|s| up to "
+            f"{rate:.4g} rad/s, {steps:.3g} steps per period): generalised-alpha damps the modes far above 1/dt "
+            "(their quasi-static response is kept, their vibration is not); a mode the results should carry "
+            f"needs {GOOD_STEPS_PER_MODE} or more steps per period"
+        ]
     return [
         f"solver.dt ({compiled.dt:.4g} s) resolves the fastest mode of the plant with its PTO gains (|s| = "
         f"{rate:.4g} rad/s) with {steps:.3g} steps per period; {GOOD_STEPS_PER_MODE} or more are recommended"
