@@ -39,7 +39,10 @@ def test_times_in_seconds_or_relative_to_the_period(value, seconds):
         ({"sea": {"duration": -5.0}}, "sea.duration must be positive"),
         ({"sea": {"duration": "ten Tp"}}, "cannot read 'ten Tp'"),
         ({"solver": {"dt": 30.0}}, "must be shorter than sea.duration"),
-        ({"solver": {"method": "euler"}}, "accepted: beeman, beeman-explicit, frequency, generalized-alpha, linear, reference, rk4"),
+        (
+            {"solver": {"method": "euler"}},
+            "accepted: beeman, beeman-explicit, frequency, generalized-alpha, linear, reference, rk4",
+        ),
         (
             {"solver": {"method": "rk4"}, "radiation": {"method": "convolution"}},
             "needs radiation.method 'state_space' or 'none'",
