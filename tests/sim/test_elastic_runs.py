@@ -2,7 +2,7 @@
 elastic (the cylinder's end on the arm's node) compiles with the arm's modal coordinates in the plant; the explicit
 schemes refuse a step its modes cannot take and say which step would; the linear model's mass is the multibody
 core's at the equilibrium's deflection and its state matrix the kernels' Jacobian; a generalised-alpha run at the
-wave step is the exact frequency-domain solution; the loads are refused."""
+wave step is the exact frequency-domain solution (the loads of such runs: ``test_elastic_loads.py``)."""
 
 from __future__ import annotations
 
@@ -129,13 +129,6 @@ def test_the_linear_model_takes_the_mass_at_the_equilibrium_s_deflection(elastic
         .mass
     )
     assert np.abs(undeformed - core).max() > 1e-9 * scale
-
-
-def test_loads_are_refused_for_an_elastic_device(elastic_spec):
-    sc = _scene(elastic_spec, "beeman", 1e-4)
-    sc = type(sc).from_dict({**sc.to_dict(), "outputs": {"variables": ["motion", "loads"]}})
-    with pytest.raises(SceneError, match=r"'loads'.*elastic bodies \['arm'\].*leave 'loads' out"):
-        compile_scene(sc)
 
 
 def test_the_linear_model_s_state_matrix_is_the_jacobian_of_the_elastic_equations(elastic_spec):

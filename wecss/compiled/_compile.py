@@ -445,13 +445,6 @@ def compile_plant(scene: Scene) -> CompiledScene:
     sources = _device_sources(name, hydro_name)
     body_to_body = scene.radiation.body_to_body
     device, coupling, statics, q0, static_stiffness = _device_parts(name, hydro_name, sources, body_to_body)
-    if device.elastic_bodies and "loads" in scene.outputs.variables:
-        raise SceneError(
-            f"outputs.variables has 'loads', and device {device.name!r} has elastic bodies "
-            f"{list(device.elastic_bodies)} (flexible.dynamics = 'elastic'): the loads' recovery (joint reactions, "
-            "section loads, stress fields) does not carry elastic bodies yet; leave 'loads' out, or run them rigid "
-            "(dynamics = 'frozen')"
-        )
     notes: list[str] = []
     if not body_to_body:
         notes.append("radiation between bodies left out (radiation.body_to_body = false)")

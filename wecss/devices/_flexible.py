@@ -374,6 +374,7 @@ def flexible_body(
         centrifugal=flexible.centrifugal, damping_ratio=flexible.damping_ratio,
     )  # fmt: skip
     origin = model.body(body).center_of_mass
+    geometric = flexible.dynamics == "elastic" and flexible.geometric_stiffness  # its stresses as its equations
     spots = [
         StressPoint(m.name, s.at, s.y, s.z, s.scf, f"{m.name}.{s.name}")
         for m in members
@@ -384,5 +385,5 @@ def flexible_body(
               for p in default_points(frame)]  # fmt: skip
     return FlexibleBody(
         body, flexible, frame, basis, invariants(frame, basis.basis, origin, basis.damping),
-        stress_modes(frame, basis.basis, spots + fibres, origin), kinds,
+        stress_modes(frame, basis.basis, spots + fibres, origin, geometric=geometric), kinds,
     )  # fmt: skip

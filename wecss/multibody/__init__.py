@@ -4,7 +4,9 @@ and joints, tree kinematics (B, Bdot, D) and dynamics."""
 from ._dynamics import Dynamics as Dynamics
 from ._dynamics import body_mass_matrix as body_mass_matrix
 from ._dynamics import elastic_energy as elastic_energy
+from ._dynamics import frame_centre as frame_centre
 from ._dynamics import gravity_force as gravity_force
+from ._dynamics import inertial_terms as inertial_terms
 from ._dynamics import potential_energy as potential_energy
 from ._dynamics import structural_force as structural_force
 from ._elastic import Attachment as Attachment

@@ -57,6 +57,71 @@ def _set_elastic_block(model: Multibody, i: int, mass: np.ndarray, xi: np.ndarra
     return derivative
 
 
+def frame_centre(model: Multibody, i: int, q: np.ndarray) -> np.ndarray:
+    """Body ``i``'s centre of mass in its frame's coordinates (the reference configuration's world coordinates) [m]:
+    fixed for a rigid body, moving with the modal coordinates of ``q`` for a flexible one. A point P of the frame is
+    at ``position + rotation @ (P - frame_centre)`` (``KinematicState``)."""
+    body = model.bodies[i]
+    if body.elastic is None:
+        return body.center_of_mass
+    return body.elastic.centre_of_mass(_modal(model, i, q))
+
+
+def _elastic_quadratic(derivative: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """A flexible body's quadratic-velocity matrix beyond D M, on Y = (w, xi_dot): Mdot = sum_k xi_dot_k dM/dxi_k,
+    its modes' rows less 1/2 Y' dM/dxi_k (``derivative``: dM/dxi (n, 3 + n, 3 + n))."""
+    block = np.einsum("k,kab->ab", y[3:], derivative)
+    block[3:] -= 0.5 * np.einsum("a,kab->kb", y, derivative)
+    return block
+
+
+def inertial_terms(
+    model: Multibody,
+    q: np.ndarray,
+    v: np.ndarray,
+    angular_velocity: np.ndarray,
+    total_mass: np.ndarray,
+    rigid_mass: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The Cartesian mass at ``q`` and the quadratic-velocity load H X, so that the loads the motion takes are
+    mass @ a + H X (a = B v_dot + Bdot v, the Cartesian accelerations).
+
+    A rigid body's rows of H X are w x (J w) on its rotation; a flexible body's mass rows (rotation and modes) are
+    its M(xi) at the modal coordinates of ``q``, and its H X is w x (J_c w + C_c xi_dot) + Mdot Y on its rotation
+    rows and Mdot Y - 1/2 Y' dM/dxi_k Y on its modes' rows, Y = (w, xi_dot) (see ``wecss.multibody._elastic``).
+    Flexible bodies are dry: their rows of ``total_mass`` (no added mass) are replaced by M(xi).
+
+    Parameters
+    ----------
+    model : Multibody
+    q, v : ndarray (nq,), (nv,)
+        Configuration and generalised velocities.
+    angular_velocity : ndarray (n_body, 3)
+        Body-axis angular velocities [rad/s] (``KinematicState.angular_velocity``).
+    total_mass, rigid_mass : ndarray (n_cart, n_cart)
+        The undeformed Cartesian mass with and without the infinite-frequency added mass.
+
+    Returns
+    -------
+    (mass, quadratic) : ndarrays (n_cart, n_cart), (n_cart,)
+        [kg, kg m, kg m^2]; [N, N m, J].
+    """
+    quadratic = np.zeros(model.n_cart)
+    mass = total_mass.copy() if model.elastic_bodies else total_mass
+    for i, s in enumerate(model.cart_start):
+        w = angular_velocity[i]
+        if model.bodies[i].elastic is None:
+            quadratic[s + 3 : s + 6] = np.cross(w, rigid_mass[s + 3 : s + 6, s + 3 : s + 6] @ w)
+            continue
+        derivative = _set_elastic_block(model, i, mass, _modal(model, i, q))
+        own = slice(model.mode_velocity_start[i], model.mode_velocity_start[i + 1])
+        y = np.concatenate([w, np.asarray(v, dtype=float)[own]])
+        rows = slice(s + 3, s + 6 + y.size - 3)
+        quadratic[rows] = _elastic_quadratic(derivative, y) @ y
+        quadratic[s + 3 : s + 6] += np.cross(w, mass[s + 3 : s + 6, rows] @ y)
+    return mass, quadratic
+
+
 @dataclass(frozen=True)
 class DynamicsTerms:
     """M*, N* and the kinematics at one state."""
@@ -124,10 +189,7 @@ class Dynamics:
             derivative = _set_elastic_block(model, i, rigid, _modal(model, i, q))
             n = derivative.shape[0]
             s = model.cart_start[i] + 3
-            y = cartesian[s : s + 3 + n]
-            block = np.einsum("k,kab->ab", y[3:], derivative)
-            block[3:] -= 0.5 * np.einsum("a,kab->kb", y, derivative)
-            quadratic[s : s + 3 + n, s : s + 3 + n] = block
+            quadratic[s : s + 3 + n, s : s + 3 + n] = _elastic_quadratic(derivative, cartesian[s : s + 3 + n])
         return rigid, quadratic
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, force: np.ndarray) -> np.ndarray:

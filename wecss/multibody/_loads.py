@@ -2,13 +2,16 @@
 
 The MFM eliminates the constraint forces; structural and fatigue studies need them back. Given the motion
 (q, v, v_dot) and the applied Cartesian loads, each body needs the wrench W_i = M_tot a_i + w_i x (J_i w_i) -
-F_applied,i, with a = B v_dot + Bdot v; the joint of body i carries W_i plus what its children's joints carry.
+F_applied,i, with a = B v_dot + Bdot v; the joint of body i carries W_i plus what its children's joints carry. A
+flexible body's wrench is its momentum rate about its instantaneous centre of mass: m a_c, and Euler's equation of a
+deformable body (``inertial_terms``); its modes' rows are not a joint load.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from ._dynamics import frame_centre, inertial_terms
 from ._kinematics import kinematics
 from ._tree import Multibody
 
@@ -36,7 +39,7 @@ def joint_reactions(
     total_mass, rigid_mass : ndarray (n_cart, n_cart)
         Rigid mass plus infinite-frequency added mass, and the rigid mass alone (for the gyroscopic term). The
         joints carry the rigid rows' balance (with the added-mass coupling to the modes' accelerations); the modes'
-        own rows are not a joint load (no elastic attachment yet).
+        own rows are not a joint load. A flexible body's rows are its M(xi) at ``q`` (``inertial_terms``).
 
     Returns
     -------
@@ -48,15 +51,14 @@ def joint_reactions(
     st = kinematics(model, q, v)
     assert st.Bdot is not None and st.angular_velocity is not None
     acc = st.B @ v_dot + st.Bdot @ v
-    need = total_mass @ acc - applied
+    mass, quadratic = inertial_terms(model, q, v, st.angular_velocity, total_mass, rigid_mass)
+    need = mass @ acc - applied
     n = len(model.bodies)
     force = np.zeros((n, 3))
     moment_origin = np.zeros((n, 3))  # about the world origin
     for i in range(n):
         s = model.cart_start[i]
-        inertia = rigid_mass[s + 3 : s + 6, s + 3 : s + 6]
-        w = st.angular_velocity[i]
-        m_body = need[s + 3 : s + 6] + np.cross(w, inertia @ w)
+        m_body = need[s + 3 : s + 6] + quadratic[s + 3 : s + 6]
         f = need[s : s + 3]
         force[i] = f
         moment_origin[i] = st.rotation[i] @ m_body + np.cross(st.position[i], f)
@@ -69,10 +71,9 @@ def joint_reactions(
     out_m = np.zeros((n, 3))
     for k, i in enumerate(model.order):
         joint = model.joints[model.joint_of[i]]
-        body = model.bodies[i]
         if joint.kind == "revolute":
             assert joint.point is not None
-            point = st.position[i] + st.rotation[i] @ (joint.point - body.center_of_mass)
+            point = st.position[i] + st.rotation[i] @ (joint.point - frame_centre(model, i, q))
         else:
             point = st.position[i]
         out_f[k] = force[i]

@@ -19,6 +19,12 @@ is the body's to 0.1 %): the free-body cut of the hot spots (``wecss.sim._sectio
 is counted point by point (``wecss.results.StressFieldRecorder``) over the statistics window, chunk by chunk.
 
 Only dry bodies: a wetted body's hydrodynamic loads act over its surface, not at points of its structure.
+
+An elastic body (``flexible.dynamics = "elastic"``) carries its deformation in its modal coordinates xi(t): its
+stresses are those of its basis's stress modes, sigma = S xi + S_a xi_ddot + S_r r, with r the rigid-motion load
+coordinates of its floating frame's motion (``ElasticHistory``): the section loads of the finite-element solution
+-(K u + M a - f) element by element, the Coriolis and centrifugal loads of the elastic velocities and displacements
+(2 w x u_dot, w x (w x u), alpha x u) left out (``wecss.structure._stress``).
 """
 
 from __future__ import annotations
@@ -78,6 +84,34 @@ def quasi_static_coordinates(
     return load / basis.omega**2, rigid
 
 
+@dataclass
+class ElasticHistory:
+    """An elastic body's modal coordinates and its floating frame's motion at the saved steps.
+
+    xi, xi_ddot : (n_t, n) its modal coordinates [1] and their accelerations [1/s^2]; gravity : (n_t, 3) g in body
+    axes [m/s^2]; origin_acceleration : (n_t, 3) the acceleration of the frame's point ``origin`` [m/s^2], alpha,
+    omega : (n_t, 3) the frame's angular acceleration [rad/s^2] and velocity [rad/s], body axes; origin : (3,) that
+    point in the frame's coordinates (the reference configuration's world coordinates) [m].
+    """
+
+    xi: np.ndarray
+    xi_ddot: np.ndarray
+    gravity: np.ndarray
+    origin_acceleration: np.ndarray
+    alpha: np.ndarray
+    omega: np.ndarray
+    origin: np.ndarray
+
+    def rigid_coordinates(self, origin: np.ndarray) -> np.ndarray:
+        """The rigid-motion load coordinates (n_t, 12) (``wecss.structure.RIGID_LOADS``) about the frame's point
+        ``origin`` [m]: the frame's acceleration carried there, a + alpha x r + w x (w x r), r = origin - the
+        history's origin."""
+        arm = np.asarray(origin, dtype=float) - self.origin
+        w = self.omega
+        acceleration = self.origin_acceleration + np.cross(self.alpha, arm) + np.cross(w, np.cross(w, arm))
+        return rigid_load_coordinates(self.gravity - acceleration, self.alpha, w)
+
+
 @dataclass(frozen=True)
 class FibreField:
     """The fibre points of the device's frozen flexible bodies and their statistics over the window: ``names``,
@@ -92,18 +126,25 @@ class FibreField:
     rms: np.ndarray
 
 
-def fibre_field(bodies: list[tuple[FlexibleBody, BodyHistory]], dt: float, start: int) -> FibreField:
+def fibre_field(bodies: list[tuple[FlexibleBody, BodyHistory | ElasticHistory]], dt: float, start: int) -> FibreField:
     """Record each body's field from step ``start`` (the statistics window) in chunks of :data:`CHUNK` steps,
-    saved steps ``dt`` [s] apart (no field for a window of fewer than two steps)."""
+    saved steps ``dt`` [s] apart (no field for a window of fewer than two steps): a frozen body's from its history's
+    loads (:class:`BodyHistory`), an elastic body's from its modal coordinates (:class:`ElasticHistory`)."""
     parts: list[xr.Dataset] = []
-    if bodies and bodies[0][1].points.shape[0] - start < 2:
+    if bodies and bodies[0][1].gravity.shape[0] - start < 2:
         bodies = []
     for body, history in bodies:
-        basis, modes = static_basis(body)
-        xi, rigid = quasi_static_coordinates(body, basis, history)
+        if isinstance(history, ElasticHistory):
+            modes, xi, xi_ddot = body.stresses, history.xi, history.xi_ddot
+            rigid = history.rigid_coordinates(body.invariants.origin)
+        else:
+            basis, modes = static_basis(body)
+            xi, rigid = quasi_static_coordinates(body, basis, history)
+            xi_ddot = None
         recorder = StressFieldRecorder(modes, dt)
         for first in range(start, xi.shape[0], CHUNK):
-            recorder.update(xi[first : first + CHUNK], None, rigid[first : first + CHUNK])
+            chunk = slice(first, first + CHUNK)
+            recorder.update(xi[chunk], None if xi_ddot is None else xi_ddot[chunk], rigid[chunk])
         parts.append(recorder.result())
     if not parts:
         empty = np.zeros(0)

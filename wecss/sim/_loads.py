@@ -20,8 +20,17 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..compiled import CompiledScene, PtoKind
-from ..compiled.kernels import end_stop_force, hydro_velocity, hydrostatic_force, kinematics, world_jacobian
-from ..multibody import joint_reactions
+from ..compiled.kernels import (
+    end_stop_force,
+    hydro_velocity,
+    hydrostatic_force,
+    kinematics,
+    pto_strokes,
+    world_jacobian,
+)
+from ..multibody import frame_centre, inertial_terms, joint_reactions
+from ..multibody import kinematics as tree_kinematics
+from ._fibre_field import ElasticHistory
 from ._sections import BodyHistory, section_loads
 
 
@@ -46,7 +55,9 @@ class Loads:
         Section loads N, Vy, Vz [N], T, My, Mz [N m] at each hot spot of the device's members, member axes (see
         ``wecss.sim._sections`` for the free body).
     histories : dict of int to BodyHistory
-        What each body with members or a frozen flexible structure felt (by body index; see ``BodyHistory``).
+        What each body with members or a flexible structure felt (by body index; see ``BodyHistory``).
+    elastic : dict of int to ElasticHistory
+        Each elastic body's modal coordinates and its floating frame's motion (by body index).
     """
 
     joint_force: np.ndarray
@@ -58,10 +69,13 @@ class Loads:
     closure: float
     section: np.ndarray
     histories: dict[int, BodyHistory] = field(default_factory=dict)
+    elastic: dict[int, ElasticHistory] = field(default_factory=dict)
 
 
-def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, force: np.ndarray):
-    """World Cartesian loads (n_cart,) of the PTO forces ``force`` (n_pto,) and each PTO's load on its two ends."""
+def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, force: np.ndarray, nodes: dict):
+    """World Cartesian loads (n_cart,) of the PTO forces ``force`` (n_pto,) and each PTO's load on its two ends
+    (an end on a flexible body at its node: ``nodes`` maps (PTO, end) to where the structure has taken it; the
+    Cartesian loads then hold the force and its moment about the body's centre of mass, not the modes' share)."""
     p = compiled.plant
     model = compiled.device.model
     cart = np.zeros(p.cart_body.size)
@@ -92,7 +106,7 @@ def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, fo
                 ((p.pto_body_a[k], p.pto_point_a[k]), (p.pto_body_b[k], p.pto_point_b[k]))
             ):
                 bodies[k, e] = body
-                ends.append(point if body < 0 else pos[body] + rot[body] @ point)
+                ends.append(nodes[(k, e)] if (k, e) in nodes else point if body < 0 else pos[body] + rot[body] @ point)
             d = ends[0] - ends[1]
             d = d / np.linalg.norm(d)
             points[k] = ends
@@ -137,6 +151,9 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
     members = compiled.device.members
     carriers = sorted({model.body_names.index(m.body) for m in members if m.hot_spots} | set(field_bodies(compiled)))
     gathered: dict[int, list[list[np.ndarray]]] = {i: [] for i in carriers}
+    flexible = bool(model.elastic_bodies)
+    elastic = [i for i in carriers if model.bodies[i].elastic is not None]
+    frames: dict[int, list[list[np.ndarray]]] = {i: [] for i in elastic}
     gravity = np.array([0.0, 0.0, -compiled.hydro.g])
     moored = p.mooring_damping.size > 0  # stored empty without dampers
     worst, scale = 0.0, 0.0
@@ -152,7 +169,7 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         x, xd, f = pto[0][t], pto[1][t], pto[2][t]
         force = f + end_stop_force(p, x, xd) if n_pto else np.zeros(0)
         cart, out.pto_body_force[t], out.pto_body_moment[t], pto_bodies, pto_points = _pto_cartesian(
-            compiled, rot, pos, force
+            compiled, rot, pos, force, _elastic_ends(compiled, qq) if flexible else {}
         )
         world = own + cart
         applied = world.copy()  # world forces, body-axis moments (the convention of B and joint_reactions)
@@ -163,40 +180,84 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         for k, i in enumerate(child_of_joint):
             out.joint_force_local[t, k] = rot[i].T @ f_j[k]
             out.joint_moment_local[t, k] = rot[i].T @ m_j[k]
-        # closure on the free directions: B' ((M + A_inf)(B a + Bdot v) + gyroscopic - applied) = 0
-        gyro = np.zeros(p.cart_body.size)
-        for i, s in enumerate(start):
-            gyro[s + 3 : s + 6] = np.cross(omega[i], p.inertia[i] @ omega[i])
+        # closure on the free directions: B' ((M + A_inf)(B a + Bdot v) + H X - applied) = 0
+        mass, quadratic = inertial_terms(model, qq, vv, omega, p.total_mass, rigid)
         acc = b @ a[t] + bdot @ vv
-        inertia = p.total_mass @ acc + gyro
-        balance = b.T @ (inertia - applied)
+        inertia = mass @ acc + quadratic
+        if flexible:  # the PTOs' generalised force by their transmissions (on the modes of the bodies they act on)
+            own_applied = own.copy()
+            for i, s in enumerate(start):
+                own_applied[s + 3 : s + 6] = rot[i].T @ own[s + 3 : s + 6]
+            balance = b.T @ (inertia - own_applied) - pto_strokes(p, qq, rot, pos, b)[1].T @ force
+        else:
+            balance = b.T @ (inertia - applied)
         worst = max(worst, float(np.max(np.abs(balance), initial=0.0)))
         scale = max(scale, float(np.max(np.abs(world_jacobian(p, rot, b).T @ world), initial=0.0)))
         for i in carriers:
-            loads = _body_point_loads(compiled, i, rot, pos, f_j, m_j, (out.pto_body_force[t], out.pto_body_moment[t]),
-                                      pto_bodies, pto_points)  # fmt: skip
+            pto_loads = (out.pto_body_force[t], out.pto_body_moment[t])
+            loads = _body_point_loads(compiled, i, qq, rot, pos, f_j, m_j, pto_loads, pto_bodies, pto_points)
             r, s = rot[i], start[i]
             own_force = r.T @ (own[s : s + 3] - inertia[s : s + 3])
             own_moment = r.T @ own[s + 3 : s + 6] - inertia[s + 3 : s + 6]
-            loads.append((model.bodies[i].center_of_mass, own_force, own_moment))
+            loads.append((frame_centre(model, i, qq), own_force, own_moment))
             pts, frc, mom = (np.array(c) for c in zip(*loads, strict=True))
             gathered[i].append([pts, frc, mom, r.T @ gravity, r.T @ acc[s : s + 3], acc[s + 3 : s + 6],
                                 omega[i]])  # fmt: skip
+        for i in elastic:
+            frames[i].append(_frame_motion(model, i, qq, vv, a[t], acc, rot[i], omega[i]))
     out.closure = worst / scale if scale > 0 else worst
     if carriers and n_t:
         histories = {i: BodyHistory(*(np.array(col) for col in zip(*gathered[i], strict=True))) for i in carriers}
         index = {name: k for k, name in enumerate(model.body_names)}
         out.section = section_loads(members, index, model.bodies, histories)
         out.histories = histories
+        for i in elastic:
+            xi, xi_ddot, origin_acceleration = (np.array(c) for c in zip(*frames[i], strict=True))
+            h, body = histories[i], model.bodies[i].elastic
+            assert body is not None
+            origin = body.invariants.origin
+            out.elastic[i] = ElasticHistory(xi, xi_ddot, h.gravity, origin_acceleration, h.alpha, h.omega, origin)
+    return out
+
+
+def _frame_motion(model, i: int, q: np.ndarray, v: np.ndarray, v_dot: np.ndarray, acc: np.ndarray, rot, omega):
+    """Elastic body ``i``'s modal coordinates, their accelerations and the acceleration (body axes) [m/s^2] of its
+    floating frame's origin (the undeformed centre of mass c0), from the Cartesian accelerations ``acc`` (its rows:
+    the instantaneous centre of mass c = c0 + d, d = Ct xi / m, then the body's angular acceleration): the frame
+    point's acceleration is a_c - alpha x d - w x (w x d) - 2 w x d_dot - d_ddot (body axes)."""
+    elastic = model.bodies[i].elastic
+    inv = elastic.invariants
+    coupling = inv.translational_coupling / inv.mass
+    own = slice(model.mode_velocity_start[i], model.mode_velocity_start[i + 1])
+    xi = q[model.mode_coordinate_start[i] : model.mode_coordinate_start[i + 1]]
+    s = model.cart_start[i]
+    d, d_dot, d_ddot = coupling @ xi, coupling @ v[own], coupling @ v_dot[own]
+    alpha = acc[s + 3 : s + 6]
+    origin = rot.T @ acc[s : s + 3] - np.cross(alpha, d) - np.cross(omega, np.cross(omega, d))
+    origin -= 2 * np.cross(omega, d_dot) + d_ddot
+    return [xi.copy(), v_dot[own].copy(), origin]
+
+
+def _elastic_ends(compiled: CompiledScene, q: np.ndarray) -> dict[tuple[int, int], np.ndarray]:
+    """Where the structure has taken each actuator end on a flexible body (its attachment ``pto:<name>``), world
+    [m], by (PTO, end)."""
+    model = compiled.device.model
+    state = tree_kinematics(model, q)
+    out = {}
+    for k, pto in enumerate(compiled.device.ptos):
+        for e, body in enumerate((getattr(pto, "body_a", None), getattr(pto, "body_b", None))):
+            if body is not None and model.body(body).elastic is not None:
+                out[(k, e)] = state.point(model.body_names.index(body), f"pto:{pto.name}")[0]
     return out
 
 
 def field_bodies(compiled: CompiledScene) -> list[int]:
-    """Indices of the bodies whose stress field a run gives (``wecss.sim._fibre_field``): the flexible bodies with
-    frozen dynamics that are dry (no hydro body, mesh, drag, Morison element or mooring: every load on them acts at a
-    point of their structure or is their weight and inertia), held at their revolute joint's point, and whose
-    children hang on revolute or welded joints (at fixed points of the structure). The scene's ``outputs.every``
-    must be 1: a rainflow count of every k-th step misses the cycles between them."""
+    """Indices of the bodies whose stress field a run gives (``wecss.sim._fibre_field``): the elastic bodies (their
+    modal coordinates give it), and the flexible bodies with frozen dynamics that are dry (no hydro body, mesh, drag,
+    Morison element or mooring: every load on them acts at a point of their structure or is their weight and
+    inertia), held at their revolute joint's point, and whose children hang on revolute or welded joints (at fixed
+    points of the structure). The scene's ``outputs.every`` must be 1: a rainflow count of every k-th step misses
+    the cycles between them."""
     device = compiled.device
     model = device.model
     if compiled.scene.outputs.every != 1:
@@ -209,23 +270,27 @@ def field_bodies(compiled: CompiledScene) -> list[int]:
         own = model.joints[model.joint_of[model.body_names.index(name)]]
         held = own.kind == "revolute" and (flexible.clamp is None or np.allclose(flexible.clamp, own.point))  # type: ignore[arg-type]
         children = [j.kind in ("revolute", "weld") for j in model.joints if j.parent == name]
-        if flexible.dynamics == "frozen" and body.hydro_body is None and name not in wet and held and all(children):
+        frozen = (
+            flexible.dynamics == "frozen" and body.hydro_body is None and name not in wet and held and all(children)
+        )
+        if frozen or body.elastic is not None:
             out.append(model.body_names.index(name))
     return out
 
 
-def _body_point_loads(compiled: CompiledScene, i: int, rot, pos, f_j, m_j, pto_loads, pto_bodies, pto_points):
+def _body_point_loads(compiled: CompiledScene, i: int, q, rot, pos, f_j, m_j, pto_loads, pto_bodies, pto_points):
     """Point loads on body ``i`` from its joints and PTOs: a list of (point in body reference coordinates [m],
-    force, moment about the point [N, N m], body axes)."""
+    force, moment about the point [N, N m], body axes); on a flexible body, a point carried by its structure is
+    where the structure has taken it."""
     model = compiled.device.model
-    r, centre = rot[i], model.bodies[i].center_of_mass
+    r, centre = rot[i], frame_centre(model, i, q)
     to_body = lambda point: centre + r.T @ (point - pos[i])  # noqa: E731
 
     def joint_point(c: int) -> np.ndarray:
         joint = model.joints[model.joint_of[c]]
         if joint.kind == "revolute":
             assert joint.point is not None
-            return pos[c] + rot[c] @ (joint.point - model.bodies[c].center_of_mass)
+            return pos[c] + rot[c] @ (joint.point - frame_centre(model, c, q))
         return pos[c]
 
     out = []

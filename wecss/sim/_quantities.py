@@ -126,14 +126,14 @@ def _loads(qs: Quantities) -> Loads:
 
 
 def _fibre_field(qs: Quantities) -> FibreField:
-    """The stress field of the device's frozen dry flexible bodies over the statistics window of the saved steps
-    (``wecss.sim._fibre_field``)."""
+    """The stress field of the device's elastic bodies and frozen dry flexible bodies over the statistics window of
+    the saved steps (``wecss.sim._fibre_field``)."""
     loads: Loads = qs.get("loads")
     controlled = qs.controlled
     model = controlled.device.model
     time = qs.record.time
     bodies = [
-        (controlled.device.flexible_body(model.body_names[i]), loads.histories[i])
+        (controlled.device.flexible_body(model.body_names[i]), loads.elastic.get(i, loads.histories[i]))
         for i in field_bodies(controlled)
         if i in loads.histories
     ]

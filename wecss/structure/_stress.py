@@ -10,7 +10,12 @@ loads in the body's rigid-body motion (weight and d'Alembert inertia, linear in 
 ``wecss.structure.RIGID_LOADS``). That is exact for the finite-element solution (element by element equilibrium),
 whatever the mesh, so a cut at a node gives the free-body cut's value. At a member's end (no element starts there)
 it is the force the last element carries into its end node, the point loads at that node included. Coriolis loads
-of the elastic velocities (2 w x u_dot) are left out.
+of the elastic velocities (2 w x u_dot) are left out. With ``geometric`` (a body whose equations carry the geometric
+stiffening of its own axial strain, ``wecss.structure._geometric``) the element's force adds the gradient of its
+cubic strain energy U3_e = 1/2 N_e d' G_e d (N_e = EA/L times its elongation, G_e its geometric stiffness per unit
+axial force, d its local displacements): N_e G_e d on its transverse and torsion DOFs and -/+ 1/2 (EA/L) d' G_e d
+on its axial ones, quadratic in the modal coordinates: the von Karman axial force EA (u' + (v'^2 + w'^2) / 2) and the
+transverse share of the axial force on the slope, which the linear terms miss.
 
 Stresses at a point (y, z) of the section, times the point's stress concentration factor: the normal stress
 sigma = N / A + My z / Iy - Mz y / Iz and the torsional shear tau = T / W_t (the thin-walled value at the wall; the
@@ -65,6 +70,9 @@ class StressModes:
         sigma and tau per modal coordinate [Pa per 1], SCF applied.
     normal_acceleration, shear_acceleration : ndarray (n_point, n)
     normal_rigid, shear_rigid : ndarray (n_point, 12)
+    section_geometric : ndarray (n_station, 6, n, n) or None
+        The quadratic section loads (see the module docstring): q' section_geometric[s, j] q [N, N m per 1].
+    normal_geometric, shear_geometric : ndarray (n_point, n, n) or None
     """
 
     stations: tuple[tuple[str, float], ...]
@@ -78,6 +86,9 @@ class StressModes:
     shear_acceleration: np.ndarray
     normal_rigid: np.ndarray
     shear_rigid: np.ndarray
+    section_geometric: np.ndarray | None = None
+    normal_geometric: np.ndarray | None = None
+    shear_geometric: np.ndarray | None = None
 
     def section_loads(
         self, q: np.ndarray, q_ddot: np.ndarray | None = None, rigid: np.ndarray | None = None
@@ -89,6 +100,8 @@ class StressModes:
             out = out + np.einsum("sjn,...n->...sj", self.section_acceleration, q_ddot)
         if rigid is not None:
             out = out + np.einsum("sjr,...r->...sj", self.section_rigid, rigid)
+        if self.section_geometric is not None:
+            out = out + np.einsum("...m,sjmk,...k->...sj", q, self.section_geometric, q)
         return out
 
     def stresses(
@@ -105,8 +118,18 @@ class StressModes:
         if rigid is not None:
             normal = normal + np.asarray(rigid, dtype=float) @ self.normal_rigid.T
             shear = shear + np.asarray(rigid, dtype=float) @ self.shear_rigid.T
+        if self.normal_geometric is not None and self.shear_geometric is not None:
+            normal = normal + _quadratic(q, self.normal_geometric)
+            shear = shear + _quadratic(q, self.shear_geometric)
         vm, signed = von_mises(normal, shear)
         return {"normal": normal, "shear": shear, "von_mises": vm, "signed_von_mises": signed}
+
+
+def _quadratic(q: np.ndarray, forms: np.ndarray) -> np.ndarray:
+    """q' forms[p] q (..., n_point) for q (..., n) and forms (n_point, n, n), by one matrix product."""
+    n_point, n, _ = forms.shape
+    half = (q @ forms.transpose(1, 0, 2).reshape(n, n_point * n)).reshape(*q.shape[:-1], n_point, n)
+    return np.einsum("...pk,...k->...p", half, q)
 
 
 def default_points(frame: Frame) -> tuple[StressPoint, ...]:
@@ -125,10 +148,12 @@ def stress_modes(
     basis: np.ndarray,
     points: Sequence[StressPoint] | None = None,
     origin: np.ndarray | None = None,
+    *,
+    geometric: bool = False,
 ) -> StressModes:
     """Stress modes of ``frame`` for the mode fields ``basis`` (n_dof, n) at ``points`` (default
     :func:`default_points`); the rigid-motion loads about ``origin`` [m] (default: the frame's centre of mass, the
-    body frame's origin).
+    body frame's origin); with ``geometric``, the quadratic terms of the cubic strain energy (module docstring).
 
     Raises
     ------
@@ -144,7 +169,7 @@ def stress_modes(
         origin = sum((g.masses @ g.positions for g in groups), np.zeros(3)) / total
     index = {id(e): k for k, e in enumerate(frame.elements)}
     stations: list[tuple[str, float]] = []
-    rows_u, rows_a, rows_r = [], [], []
+    rows_u, rows_a, rows_r, rows_g = [], [], [], []
     where: dict[tuple[str, float], int] = {}
     for p in pts:
         if p.member not in members:
@@ -178,9 +203,12 @@ def stress_modes(
         rows_u.append(ku @ phi)
         rows_a.append(ma @ phi)
         rows_r.append(-sign * (t @ loads)[part])
+        if geometric:
+            rows_g.append(sign * _element_geometric(frame, e, phi)[part])
     section = np.array(rows_u).reshape(len(stations), 6, phi.shape[1])
     section_a = np.array(rows_a).reshape(len(stations), 6, phi.shape[1])
     section_r = np.array(rows_r).reshape(len(stations), 6, 12)
+    section_g = np.array(rows_g).reshape(len(stations), 6, phi.shape[1], phi.shape[1]) if geometric else None
     normal_rows, shear_rows = [], []
     for p in pts:
         s = members[p.member][0].section
@@ -191,12 +219,30 @@ def stress_modes(
     sec_at = section[at] if at else np.zeros((0, 6, phi.shape[1]))
     sec_a_at = section_a[at] if at else np.zeros((0, 6, phi.shape[1]))
     sec_r_at = section_r[at] if at else np.zeros((0, 6, 12))
+    forms: tuple[np.ndarray | None, ...] = (None, None, None)
+    if section_g is not None:
+        sec_g_at = section_g[at] if at else np.zeros((0, 6, phi.shape[1], phi.shape[1]))
+        forms = (section_g, np.einsum("pj,pjmk->pmk", a_n, sec_g_at), np.einsum("pj,pjmk->pmk", a_t, sec_g_at))
     return StressModes(
         tuple(stations), pts, section, section_a, section_r,
         np.einsum("pj,pjn->pn", a_n, sec_at), np.einsum("pj,pjn->pn", a_t, sec_at),
         np.einsum("pj,pjn->pn", a_n, sec_a_at), np.einsum("pj,pjn->pn", a_t, sec_a_at),
-        np.einsum("pj,pjr->pr", a_n, sec_r_at), np.einsum("pj,pjr->pr", a_t, sec_r_at),
+        np.einsum("pj,pjr->pr", a_n, sec_r_at), np.einsum("pj,pjr->pr", a_t, sec_r_at), *forms,
     )  # fmt: skip
+
+
+def _element_geometric(frame: Frame, element, phi: np.ndarray) -> np.ndarray:
+    """(12, n, n): the element's force from its cubic strain energy, local axes, as quadratic forms in the modal
+    coordinates: N_e G_e d on every DOF, plus -/+ 1/2 (EA/L) d' G_e d on the axial DOFs 0 and 6 (module docstring)."""
+    local = element.transform @ phi[frame.element_dofs(element)]  # d = local @ q, (12, n)
+    unit = element.local_geometric_stiffness(1.0)
+    stiffness = element.material.youngs_modulus * element.section.area / element.length
+    axial = stiffness * (local[6] - local[0])  # N_e = axial @ q
+    out = np.einsum("m,jk->jmk", axial, unit @ local)
+    energy = 0.5 * stiffness * local.T @ unit @ local
+    out[0] -= energy
+    out[6] += energy
+    return out
 
 
 def _snap(point: StressPoint, members: dict) -> float:
