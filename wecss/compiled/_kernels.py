@@ -800,19 +800,35 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
         work = np.zeros(elastic_work_size(p.elastic_index))
         _elastic_pto_ends(
             p.elastic_index, p.elastic_data, work, q, rot, pos, b, p.com0, p.cart_start, p.pto_body_a, p.pto_body_b,
-            p.pto_point_a, p.pto_point_b, x, gmat,
+            p.pto_point_a, p.pto_point_b, x, gmat, np.zeros((0, 2, 3)),
         )  # fmt: skip
     return x, gmat
+
+
+@kernel
+def elastic_pto_end_points(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """World points (n_pto, 2, 3) [m] of both ends of every actuator with an end on a flexible body, that end on its
+    node (:func:`_elastic_pto_ends`); zeros for the other PTOs."""
+    n_pto = p.pto_kind.shape[0]
+    where = np.zeros((n_pto, 2, 3))
+    if p.n_elastic > 0:
+        work = np.zeros(elastic_work_size(p.elastic_index))
+        _elastic_pto_ends(
+            p.elastic_index, p.elastic_data, work, q, rot, pos, b, p.com0, p.cart_start, p.pto_body_a, p.pto_body_b,
+            p.pto_point_a, p.pto_point_b, np.zeros(n_pto), np.zeros((n_pto, b.shape[1])), where,
+        )  # fmt: skip
+    return where
 
 
 @step_kernel
 def _elastic_pto_ends(
     index: np.ndarray, data: np.ndarray, work: np.ndarray, q: np.ndarray, rot: np.ndarray, pos: np.ndarray,
     b: np.ndarray, com0: np.ndarray, cart_start: np.ndarray, body_a: np.ndarray, body_b: np.ndarray,
-    point_a: np.ndarray, point_b: np.ndarray, x: np.ndarray, gmat: np.ndarray,
+    point_a: np.ndarray, point_b: np.ndarray, x: np.ndarray, gmat: np.ndarray, where: np.ndarray,
 ) -> None:  # fmt: skip
     """The strokes and transmissions of the actuators with an end on a flexible body, over
-    :func:`_pto_strokes_into`'s (``index``, ``data``, ``work``: see :func:`_frames`; the others as in the Plant).
+    :func:`_pto_strokes_into`'s (``index``, ``data``, ``work``: see :func:`_frames`; the others as in the Plant),
+    and their ends' world points into ``where`` (n_pto, 2, 3) when it has a row per PTO (none: shape (0, 2, 3)).
 
     Such an end rides on its attachment (``wecss.multibody``: ``KinematicState.point``): at
     G_i prod_k exp(psi_k xi_k) X0 (X0 its reference point, G_i its body's frame: t_i = p_i - R_i c_i(xi)), with
@@ -863,6 +879,10 @@ def _elastic_pto_ends(
             for a in range(3):
                 ends[e, a] = tmp[a] + t[a]
                 arms[e, a] = ends[e, a] - pos[body, a]
+        if where.shape[0] > 0:
+            for e in range(2):
+                for a in range(3):
+                    where[k, e, a] = ends[e, a]
         d0, d1, d2 = ends[0, 0] - ends[1, 0], ends[0, 1] - ends[1, 1], ends[0, 2] - ends[1, 2]
         length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
         x[k] = length
@@ -1054,7 +1074,7 @@ def _configure_body(
     if elastic:  # an actuator's end on a flexible body rides on its node
         _elastic_pto_ends(
             p.elastic_index, p.elastic_data, w.elastic, q, w.rot, w.pos, w.b, p.com0, p.cart_start, p.pto_body_a,
-            p.pto_body_b, p.pto_point_a, p.pto_point_b, w.stroke, w.gmat,
+            p.pto_body_b, p.pto_point_a, p.pto_point_b, w.stroke, w.gmat, np.zeros((0, 2, 3)),
         )  # fmt: skip
     for k in range(w.stroke.shape[0]):
         w.stroke[k] -= p.pto_rest[k]

@@ -20,6 +20,7 @@ from ._kernels import configuration_rate as configuration_rate
 from ._kernels import configure as configure
 from ._kernels import configure_core as configure_core
 from ._kernels import configure_elastic as configure_elastic
+from ._kernels import elastic_pto_end_points as elastic_pto_end_points
 from ._kernels import end_stop_force as end_stop_force
 from ._kernels import hydro_velocity as hydro_velocity
 from ._kernels import hydrostatic_force as hydrostatic_force

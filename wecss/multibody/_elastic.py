@@ -46,6 +46,11 @@ from ._modes import GeneralisedModes
 from ._se3 import hat
 from ._vectors import vector3
 
+_LEVI_CIVITA = np.zeros((3, 3, 3))
+_LEVI_CIVITA[0, 1, 2] = _LEVI_CIVITA[1, 2, 0] = _LEVI_CIVITA[2, 0, 1] = 1.0
+_LEVI_CIVITA[0, 2, 1] = _LEVI_CIVITA[2, 1, 0] = _LEVI_CIVITA[1, 0, 2] = -1.0
+"""eps_abc: hat(x) y = eps_abc x_b y_c."""
+
 
 @dataclass(frozen=True, eq=False)
 class Attachment:
@@ -209,13 +214,16 @@ class ElasticBody:
         p2 = inv.inertia_second
         dp = inv.inertia_first + inv.inertia_first.transpose(0, 2, 1)
         dp = dp + np.einsum("l,klab->kab", xi, p2) + np.einsum("l,lkab->kab", xi, p2)
-        for k in range(n):
-            c = ct[:, k]
-            d_j = np.trace(dp[k]) * eye - dp[k] - (2 * (s @ c) * eye - np.outer(c, s) - np.outer(s, c)) / m
-            d_c = inv.gyroscopic[k].T - hat(c) @ ct / m
-            d[k, :3, :3] = d_j
-            d[k, :3, 3:] = d_c
-            d[k, 3:, :3] = d_c.T
+        # per k (vectorised): d_j = tr(dP_k) I - dP_k - (2 (s . c_k) I - c_k s' - s c_k') / m with c_k = Ct[:, k], and
+        # d_c = G_k' - hat(c_k) Ct / m
+        sc = s @ ct
+        outer = np.einsum("ak,b->kab", ct, s)
+        d[:, :3, :3] = (
+            (np.einsum("kaa->k", dp) - 2 * sc / m)[:, None, None] * eye - dp + (outer + outer.transpose(0, 2, 1)) / m
+        )
+        d_c = inv.gyroscopic.transpose(0, 2, 1) - np.einsum("abc,bk,cl->kal", _LEVI_CIVITA, ct, ct) / m
+        d[:, :3, 3:] = d_c
+        d[:, 3:, :3] = d_c.transpose(0, 2, 1)
         return 0.5 * (out + out.T), d
 
     # --- elastic forces ---------------------------------------------------------------------------------------

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._dynamics import frame_centre, inertial_terms
-from ._kinematics import kinematics
+from ._kinematics import KinematicState, kinematics
 from ._tree import Multibody
 
 
@@ -24,6 +24,7 @@ def joint_reactions(
     applied: np.ndarray,
     total_mass: np.ndarray,
     rigid_mass: np.ndarray,
+    state: KinematicState | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Wrench each joint transmits from the parent (or ground) to its child's subtree.
 
@@ -41,6 +42,9 @@ def joint_reactions(
         joints carry the rigid rows' balance (with the added-mass coupling to the modes' accelerations); the modes'
         own rows are not a joint load. A flexible body's rows are its M(xi) at ``q`` (``inertial_terms``).
 
+    state : KinematicState, optional
+        The kinematics at (q, v) with Bdot and the angular velocities, when the caller has them (default: computed).
+
     Returns
     -------
     (force, moment) : ndarrays (n_joint, 3)
@@ -48,7 +52,7 @@ def joint_reactions(
         joint's hinge point as it moves; the child's centre of mass otherwise) [N, N m]. The component of the
         moment along a revolute joint's axis is the torque the joint itself supplies (its PTO torque).
     """
-    st = kinematics(model, q, v)
+    st = kinematics(model, q, v) if state is None else state
     assert st.Bdot is not None and st.angular_velocity is not None
     acc = st.B @ v_dot + st.Bdot @ v
     mass, quadratic = inertial_terms(model, q, v, st.angular_velocity, total_mass, rigid_mass)

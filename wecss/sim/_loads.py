@@ -19,8 +19,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..compiled import CompiledScene, PtoKind
+from ..compiled import CompiledScene, Plant, PtoKind
 from ..compiled.kernels import (
+    elastic_pto_end_points,
     end_stop_force,
     hydro_velocity,
     hydrostatic_force,
@@ -28,8 +29,7 @@ from ..compiled.kernels import (
     pto_strokes,
     world_jacobian,
 )
-from ..multibody import frame_centre, inertial_terms, joint_reactions
-from ..multibody import kinematics as tree_kinematics
+from ..multibody import KinematicState, frame_centre, inertial_terms, joint_reactions
 from ._fibre_field import ElasticHistory
 from ._sections import BodyHistory, section_loads
 
@@ -169,13 +169,15 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         x, xd, f = pto[0][t], pto[1][t], pto[2][t]
         force = f + end_stop_force(p, x, xd) if n_pto else np.zeros(0)
         cart, out.pto_body_force[t], out.pto_body_moment[t], pto_bodies, pto_points = _pto_cartesian(
-            compiled, rot, pos, force, _elastic_ends(compiled, qq) if flexible else {}
+            compiled, rot, pos, force, _elastic_ends(p, qq, rot, pos, b) if flexible else {}
         )
         world = own + cart
         applied = world.copy()  # world forces, body-axis moments (the convention of B and joint_reactions)
         for i, s in enumerate(start):
             applied[s + 3 : s + 6] = rot[i].T @ world[s + 3 : s + 6]
-        f_j, m_j = joint_reactions(model, qq, vv, a[t], applied, p.total_mass, rigid)
+        # an elastic device's kinematics from the kernels (the multibody core's rides its attachments in Python)
+        state = KinematicState(rot, pos, b, bdot, omega, model.cart_start) if flexible else None
+        f_j, m_j = joint_reactions(model, qq, vv, a[t], applied, p.total_mass, rigid, state)
         out.joint_force[t], out.joint_moment[t] = f_j, m_j
         for k, i in enumerate(child_of_joint):
             out.joint_force_local[t, k] = rot[i].T @ f_j[k]
@@ -238,17 +240,11 @@ def _frame_motion(model, i: int, q: np.ndarray, v: np.ndarray, v_dot: np.ndarray
     return [xi.copy(), v_dot[own].copy(), origin]
 
 
-def _elastic_ends(compiled: CompiledScene, q: np.ndarray) -> dict[tuple[int, int], np.ndarray]:
+def _elastic_ends(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray) -> dict:
     """Where the structure has taken each actuator end on a flexible body (its attachment ``pto:<name>``), world
     [m], by (PTO, end)."""
-    model = compiled.device.model
-    state = tree_kinematics(model, q)
-    out = {}
-    for k, pto in enumerate(compiled.device.ptos):
-        for e, body in enumerate((getattr(pto, "body_a", None), getattr(pto, "body_b", None))):
-            if body is not None and model.body(body).elastic is not None:
-                out[(k, e)] = state.point(model.body_names.index(body), f"pto:{pto.name}")[0]
-    return out
+    where, ends = elastic_pto_end_points(p, q, rot, pos, b), p.elastic.pto_end
+    return {(k, e): where[k, e] for k in range(ends.shape[0]) for e in range(2) if ends[k, e] >= 0}
 
 
 def field_bodies(compiled: CompiledScene) -> list[int]:
