@@ -1,6 +1,7 @@
 """The MFM equations linearised about the static equilibrium: one model (state-space system with radiation
 states, and the exact frequency response from A(omega) and B(omega)), its exact discretisation and runs in modal
-coordinates, the frequency-domain steady state, the modal table, and the model's inputs rebuilt from a result."""
+coordinates, the frequency-domain steady state and the elastic bodies' stress transfer functions, the modal table,
+and the model's inputs rebuilt from a result."""
 
 from ._frequency import response_amplitudes as response_amplitudes
 from ._frequency import steady_state as steady_state
@@ -20,3 +21,4 @@ from ._modes import modal_table as modal_table
 from ._run import Feedback as Feedback
 from ._run import closed_loop as closed_loop
 from ._run import open_loop as open_loop
+from ._stress_response import stress_response as stress_response
