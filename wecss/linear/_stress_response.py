@@ -72,7 +72,10 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
     b0 = equilibrium_maps(compiled)[0]
     q0 = compiled.q0
     names: list[str] = []
-    normal, shear, normal0, shear0 = [], [], [], []
+    normal: list[np.ndarray] = []
+    shear: list[np.ndarray] = []
+    normal0: list[np.ndarray] = []
+    shear0: list[np.ndarray] = []
     for i in model.elastic_bodies:
         body = model.bodies[i]
         elastic = body.elastic
@@ -97,12 +100,10 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
         gravity = np.cross(g_b0, theta, axis=0)
         r_hat = np.concatenate([gravity - origin_acc, alpha, np.zeros((6, omega.size))])  # (12, n_w): RIGID_LOADS
         r0 = rigid_load_coordinates(g_b0, np.zeros(3), np.zeros(3))
-        for kind, lin, acc, rig, geo, out, out0 in (
-            ("normal", modes.normal, modes.normal_acceleration, modes.normal_rigid, modes.normal_geometric, normal,
-             normal0),
-            ("shear", modes.shear, modes.shear_acceleration, modes.shear_rigid, modes.shear_geometric, shear, shear0),
-        ):  # fmt: skip
-            del kind
+        for lin, acc, rig, geo, out, out0 in (
+            (modes.normal, modes.normal_acceleration, modes.normal_rigid, modes.normal_geometric, normal, normal0),
+            (modes.shear, modes.shear_acceleration, modes.shear_rigid, modes.shear_geometric, shear, shear0),
+        ):
             tangent = lin if geo is None else lin + np.einsum("pmk,m->pk", geo + geo.transpose(0, 2, 1), xi0)
             out.append(tangent @ xi_hat - (acc @ xi_hat) * w2 + rig @ r_hat)
             static = lin @ xi0 + rig @ r0
