@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from tests.linear.state_equations import central_jacobian, state_derivative
 from tests.sim.scenes import held, scene
-from wecss.compiled.kernels import accelerations, integrate_configuration
 from wecss.linear import steady_state
 from wecss.results import mean_power
 from wecss.sim import compile_scene, linearize, simulate_linear
@@ -27,21 +27,9 @@ def _compiled(device: str = "m4-111", **sea):
 def test_state_matrix_is_the_jacobian_of_the_nonlinear_equations(device):
     compiled = _compiled(device)
     model = linearize(compiled)
-    p, rad = compiled.plant, model.radiation
-    nv, n_h = model.mass.shape[0], p.hydro_index.size
-
-    def rhs(x: np.ndarray) -> np.ndarray:
-        xi, rate, r = x[:nv], x[nv : 2 * nv], x[2 * nv :]
-        q = integrate_configuration(p, compiled.q0, xi)
-        a, u, *_ = accelerations(p, q, rate, -(rad.C @ r), np.zeros((n_h, n_h)), np.zeros(p.pto_kind.size))
-        return np.concatenate([rate, a, rad.A @ r + rad.B @ u])
-
-    n = model.n_states
-    jac = np.zeros((n, n))
-    for k in range(n):
-        step = np.zeros(n)
-        step[k] = 1e-6
-        jac[:, k] = (rhs(step) - rhs(-step)) / 2e-6
+    p, nv = compiled.plant, model.mass.shape[0]
+    n_h = p.hydro_index.size
+    jac = central_jacobian(state_derivative(compiled, model), np.full(model.n_states, 1e-6))
     a = np.asarray(model.state_space.A)
     assert np.max(np.abs(jac - a)) <= 1e-6 * np.max(np.abs(a))
     assert (

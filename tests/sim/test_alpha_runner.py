@@ -9,6 +9,7 @@ import pytest
 
 import wecss.hydro
 from wecss.sim import simulate
+from wecss.sim._alpha import REFRESH_AFTER, GeneralizedAlphaRunner
 
 from .scenes import scene
 
@@ -48,3 +49,35 @@ def test_generalised_alpha_converges_to_rk4_with_second_order():
     print(f"generalised-alpha against RK4: errors {errors}, orders {orders}")
     assert errors[0] < 1e-2
     assert np.all((orders > 1.7) & (orders < 2.4)), orders
+
+
+def test_a_step_whose_iteration_matrix_is_made_again_records_its_accepted_state(monkeypatch):
+    """The M4 111 device from rest (its hinge's PTO a damper, 6 N m s/rad) with the iteration's matrix 1.6 times
+    the linear model's: the Newton steps overshoot, the first step (from zero accelerations) stops contracting and
+    makes the matrix again from the equations' differences, and its new step ends the iteration there. The PTO
+    rate and torque recorded at that step are the PTO law's at the recorded state (the hinge's rate, -6 times
+    it), not those of the differences' last, perturbed evaluation (off by 8e-8 of the run's largest rate)."""
+    prepare = GeneralizedAlphaRunner.prepare
+
+    def overshooting(self, controlled):
+        coefficients, jacobian = prepare(self, controlled)
+        return coefficients, np.ascontiguousarray(1.6 * jacobian)
+
+    monkeypatch.setattr(GeneralizedAlphaRunner, "prepare", overshooting)
+    sea = {"kind": "regular", "height": 0.04, "period": 1.2, "duration": 2.4, "ramp": 1.2}
+    solver = {"method": "generalized-alpha", "dt": 0.01, "corrector_tol": 0.08}
+    ds = simulate(
+        scene(
+            "m4-111", sea=sea, controller={"name": "damping", "parameters": {"damping": 6.0}},
+            radiation={"method": "state_space"}, solver=solver, outputs={"variables": ["motion", "pto"]},
+        )
+    )  # fmt: skip
+    assert ds.attrs["iteration_matrix_refreshes"] == 1
+    rate = ds.angular_velocity.sel(dof_angular="hinge_3__pitch").values[1]
+    assert rate != 0.0
+    assert ds.pto_angular_velocity.values[1, 0] == pytest.approx(rate, rel=1e-12, abs=0.0)
+    assert ds.pto_torque.values[1, 0] == pytest.approx(-6.0 * rate, rel=1e-12, abs=0.0)
+    # the refresh in the first step's pass REFRESH_AFTER, which ended the iteration: its passes, the differences
+    # and the evaluation at the accepted state
+    nv = ds.sizes["dof_linear"] + ds.sizes["dof_angular"]
+    assert ds.attrs["max_evaluations_per_step"] == REFRESH_AFTER + 1 + nv + 1

@@ -14,6 +14,7 @@ import pytest
 from scipy.linalg import eigh
 
 import wecss.hydro
+from tests.linear.state_equations import central_jacobian, state_derivative
 from wecss.multibody import Dynamics
 from wecss.scene import SceneError
 from wecss.sim import compile_scene, linearize
@@ -138,29 +139,14 @@ def test_the_linear_model_s_state_matrix_is_the_jacobian_of_the_elastic_equation
     entry and of each
     block's (stiffness, damping, radiation coupling both ways). Central differences of step 1e-6 in the
     configuration and the velocities, 1 in the radiation states (the right-hand side is linear in them)."""
-    from wecss.compiled.kernels import accelerations, integrate_configuration
-
     compiled = compile_scene(_scene(elastic_spec, "generalized-alpha", 0.05))
     model = linearize(compiled, cache=False)
-    p, rad = compiled.plant, model.radiation
-    assert rad is not None
-    nv, n_h = model.mass.shape[0], p.hydro_index.size
-
-    def rhs(x: np.ndarray) -> np.ndarray:
-        xi, rate, r = x[:nv], x[nv : 2 * nv], x[2 * nv :]
-        q = integrate_configuration(p, compiled.q0, xi)
-        a, u, *_ = accelerations(p, q, rate, -(rad.C @ r), np.zeros((n_h, n_h)), np.zeros(p.pto_kind.size))
-        return np.concatenate([rate, a, rad.A @ r + rad.B @ u])
-
-    rest = rhs(np.zeros(model.n_states))
+    nv, n = model.mass.shape[0], model.n_states
+    rhs = state_derivative(compiled, model)
+    rest = rhs(np.zeros(n))
     a = np.asarray(model.state_space.A)
-    n = model.n_states
-    jac = np.zeros((n, n))
-    for k in range(n):
-        size = 1e-6 if k < 2 * nv else 1.0  # the right-hand side is linear in the radiation states: a step of 1
-        step = np.zeros(n)
-        step[k] = size
-        jac[:, k] = (rhs(step) - rhs(-step)) / (2 * size)
+    steps = np.where(np.arange(n) < 2 * nv, 1e-6, 1.0)  # the right-hand side is linear in the radiation states
+    jac = central_jacobian(rhs, steps)
     error = np.max(np.abs(jac - a)) / np.max(np.abs(a))
     # and per block (stiffness, damping, radiation coupling rows and columns), each to its own largest entry
     blocks = [(slice(nv, 2 * nv), slice(0, nv)), (slice(nv, 2 * nv), slice(nv, 2 * nv)),

@@ -624,34 +624,43 @@ def _move_elastic(
     return e
 
 
+@inline_kernel
+def _bdot_column(
+    w: Workspace, i: int, s: np.ndarray, sd: np.ndarray, bdot: np.ndarray, r0: int, c: int, tmp: np.ndarray,
+    tmp2: np.ndarray, rts: np.ndarray, rtsd: np.ndarray,
+) -> None:  # fmt: skip
+    """Body ``i``'s six rows (from row ``r0``) of Bdot's column ``c`` (``w``: the kinematics of :func:`place` and
+    :func:`move`) from the column's world twist S = ``s`` (6,) and its rate dS/dt = ``sd`` (6,):
+    [[0, -hat(p_dot)], [0, -hat(w_b) R']] S + [[I, -hat(p)], [0, R']] dS/dt, for a joint's column and an elastic
+    attachment's alike. ``tmp``, ``tmp2``, ``rts``, ``rtsd``: scratch (3,)."""
+    r = w.rot[i]
+    _cross(w.lin[i], s[3:], tmp)
+    _cross(w.pos[i], sd[3:], tmp2)
+    for a in range(3):
+        bdot[r0 + a, c] = -tmp[a] + sd[a] - tmp2[a]
+    for a in range(3):
+        rts[a] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
+        rtsd[a] = r[0, a] * sd[3] + r[1, a] * sd[4] + r[2, a] * sd[5]
+    _cross(w.omega[i], rts, tmp)
+    for a in range(3):
+        bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+
+
 @kernel
 def _bdot(p: Plant, w: Workspace) -> np.ndarray:
-    """Bdot (n_cart, nv) from the kinematics in ``w`` (:func:`place` and :func:`move`): column by column,
-    Bdot_i = [[0, -hat(p_dot)], [0, -hat(w_b) R']] S + [[I, -hat(p)], [0, R']] dS/dt (zero on the modes' rows)."""
+    """Bdot (n_cart, nv) from the kinematics in ``w`` (:func:`place` and :func:`move`): column by column
+    (:func:`_bdot_column`; zero on the modes' rows)."""
     n = p.com0.shape[0]
     nv = p.twists.shape[0]
     bdot = np.zeros((p.cart_body.shape[0], nv))
     tmp, tmp2 = np.zeros(3), np.zeros(3)
     rts, rtsd = np.zeros(3), np.zeros(3)
     for i in range(n):
-        r = w.rot[i]
-        pi = w.pos[i]
         r0 = p.cart_start[i]
         for c in range(nv):
             if p.chain[i, c] == 0.0:
                 continue
-            s = w.cols[:, c]
-            sd = w.cols_dot[:, c]
-            _cross(w.lin[i], s[3:], tmp)
-            _cross(pi, sd[3:], tmp2)
-            for a in range(3):
-                bdot[r0 + a, c] = -tmp[a] + sd[a] - tmp2[a]
-            for a in range(3):
-                rts[a] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
-                rtsd[a] = r[0, a] * sd[3] + r[1, a] * sd[4] + r[2, a] * sd[5]
-            _cross(w.omega[i], rts, tmp)
-            for a in range(3):
-                bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+            _bdot_column(w, i, w.cols[:, c], w.cols_dot[:, c], bdot, r0, c, tmp, tmp2, rts, rtsd)
         if p.n_elastic == 0:
             continue
         el = elastic_views(p.elastic_index, p.elastic_data)
@@ -662,25 +671,14 @@ def _bdot(p: Plant, w: Workspace) -> np.ndarray:
             e = el.of_body[el.parent[att]]
             for k in range(el.size[e]):
                 c = el.column[e] + k
-                s_att = ew.att_cols[att, k]
-                sd_att = ew.att_cols_dot[att, k]
-                _cross(w.lin[i], s_att[3:], tmp)
-                _cross(pi, sd_att[3:], tmp2)
-                for a in range(3):
-                    bdot[r0 + a, c] = -tmp[a] + sd_att[a] - tmp2[a]
-                for a in range(3):
-                    rts[a] = r[0, a] * s_att[3] + r[1, a] * s_att[4] + r[2, a] * s_att[5]
-                    rtsd[a] = r[0, a] * sd_att[3] + r[1, a] * sd_att[4] + r[2, a] * sd_att[5]
-                _cross(w.omega[i], rts, tmp)
-                for a in range(3):
-                    bdot[r0 + 3 + a, c] = -tmp[a] + rtsd[a]
+                _bdot_column(w, i, ew.att_cols[att, k], ew.att_cols_dot[att, k], bdot, r0, c, tmp, tmp2, rts, rtsd)
         e = el.of_body[i]
         if e >= 0:  # the body's own mode columns: R hat(w_b) Ct / m
             for k in range(el.size[e]):
                 for a in range(3):
                     rts[a] = el.coupling[e, a, k] / el.mass[e]
                 _cross(w.omega[i], rts, tmp)
-                _rotate(r, tmp, tmp2)
+                _rotate(w.rot[i], tmp, tmp2)
                 for a in range(3):
                     bdot[r0 + a, el.column[e] + k] = tmp2[a]
     return bdot

@@ -11,7 +11,8 @@ when its step J r (r = v_dot1 - a) is below ``solver.corrector_tol`` of the larg
 (its round-off and its unresolved oscillation) where its step is tiny. Where the iteration stops contracting (a
 motion far from the equilibrium, where the linear model's matrix no longer fits), the matrix is made again from
 differences of the equations at the iterate (nv evaluations) and kept for the steps after; the result's
-``iteration_matrix_refreshes`` counts them. The radiation states
+``iteration_matrix_refreshes`` counts them (an iteration that ends on that pass evaluates the equations once more,
+at the accepted state, for the values the step records). The radiation states
 (state-space memory) follow the trapezoidal rule, A-stable like the scheme, with the hydro velocities of the last
 iterate. With rho_inf = :data:`SPECTRAL_RADIUS` the modes far above 1/h lose 20 % of their amplitude per step
 (numerical damping of what the step cannot resolve), and the wave-frequency motion is second-order accurate.
@@ -95,6 +96,7 @@ def alpha_chunk(
         matvec(r.input_real, u_now, drive0.view(np.float64))  # a real matrix onto the states' real/imag parts
         converged = False
         refreshed = False
+        stale = False  # the workspace holds the differences' last (perturbed) evaluation, not the iterate's
         count = 0
         previous = np.inf
         q1 = q
@@ -114,6 +116,7 @@ def alpha_chunk(
             if not configure(p, q1, e1 + rad, t1, w):
                 return LoopStatus.NOT_FINITE, n1
             respond(p, v1, none, command, w)
+            stale = False
             scale = 0.0
             for c in range(nv):
                 residual[c] = vd[c] - w.acc[c]
@@ -127,6 +130,7 @@ def alpha_chunk(
                 # slow or no contraction (a motion far from the equilibrium): the matrix made again, here, from
                 # the equations' differences (nv evaluations; kept for the steps after)
                 refreshed = True
+                stale = True
                 out.evaluations[2] += 1
                 _refresh(p, q, v, a, acc, vd, residual, e1 + rad, t1, command, w, coefficients, h, jacobian)
                 count += nv
@@ -139,17 +143,24 @@ def alpha_chunk(
             if change <= tol * scale + ACCELERATION_FLOOR:
                 converged = True
                 break
+        if converged:
+            # the state of the last iterate v_dot1 (its last Newton step applied: a change below the tolerance, so
+            # the equations' loads, strokes and forces of the last evaluation stand for it); v_dot1, not the
+            # evaluated accelerations, is the scheme's: an unresolved stiff mode's residual is large and its step
+            # J r tiny
+            for c in range(nv):
+                a1[c] = ((1.0 - alpha_f) * vd[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
+                v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
+            q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
+            if stale:  # the last pass made the matrix again: the equations at the accepted state instead
+                count += 1
+                if not configure(p, q1, e1 + rad, t1, w):
+                    return LoopStatus.NOT_FINITE, n1
+                respond(p, v1, none, command, w)
         out.evaluations[0] += count
         out.evaluations[1] = max(out.evaluations[1], count)
         if not converged:
             return LoopStatus.CORRECTOR_FAILED, n1
-        # the state of the last iterate v_dot1 (its last Newton step applied: a change below the tolerance, so the
-        # equations' loads, strokes and forces of the last evaluation stand for it); v_dot1, not the evaluated
-        # accelerations, is the scheme's: an unresolved stiff mode's residual is large and its step J r tiny
-        for c in range(nv):
-            a1[c] = ((1.0 - alpha_f) * vd[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
-            v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
-        q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
         if out_of_bounds(q1, bounded, bound):
             return LoopStatus.OUT_OF_BOUNDS, n1
         q[:] = q1
@@ -186,7 +197,8 @@ def _refresh(
 ) -> None:
     """The iteration's matrix J made again at the iterate ``vd`` (its residual ``residual``): the inverse of the
     residual's derivative, by forward differences of the equations (their memory force held), into
-    ``jacobian``."""
+    ``jacobian``. The workspace ``w`` is left with the last, perturbed evaluation: the caller evaluates again
+    before it reads ``w``."""
     alpha_m, alpha_f, gamma, beta = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
     nv = vd.shape[0]
     derivative = np.empty((nv, nv))
