@@ -184,7 +184,8 @@ def main() -> None:
         f" {peak(tips['rigid']['global']):.4f} (global) | {peak(tips['flexible']['total']):.4f}"
         f" (global {peak(tips['flexible']['global']):.4f}, elastic {elastic_tip / 1e3:.5f}) |",
         f"| first structural mode [Hz] | {PAPER['modes_Hz'][0]} | (none: rigid) | {modes[0]:.3f} (device in air) |",
-        f"| wall time of the run [s] | | {seconds['rigid']:.1f} | {seconds['flexible']:.1f} |",
+        f"| wall time of the run, loads included, numba cache warm [s] | | {seconds['rigid']:.1f} |"
+        f" {seconds['flexible']:.1f} |",
     ]
     lines = [
         "# NOTC 10 kW with a flexible arm: paper 003's Figs 12-18",
