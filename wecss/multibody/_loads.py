@@ -41,7 +41,6 @@ def joint_reactions(
         Rigid mass plus infinite-frequency added mass, and the rigid mass alone (for the gyroscopic term). The
         joints carry the rigid rows' balance (with the added-mass coupling to the modes' accelerations); the modes'
         own rows are not a joint load. A flexible body's rows are its M(xi) at ``q`` (``inertial_terms``).
-
     state : KinematicState, optional
         The kinematics at (q, v) with Bdot and the angular velocities, when the caller has them (default: computed).
 

@@ -21,8 +21,9 @@ is counted point by point (``wecss.results.StressFieldRecorder``) over the stati
 Only dry bodies: a wetted body's hydrodynamic loads act over its surface, not at points of its structure.
 
 An elastic body (``flexible.dynamics = "elastic"``) carries its deformation in its modal coordinates xi(t): its
-stresses are those of its basis's stress modes, sigma = S xi + S_a xi_ddot + S_r r, with r the rigid-motion load
-coordinates of its floating frame's motion (``ElasticHistory``): the section loads of the finite-element solution
+stresses are those of its basis's stress modes, sigma = S xi + S_a xi_ddot + S_r r (+ xi' S_g xi with its geometric
+stiffening), with r the rigid-motion load coordinates of its floating frame's motion (``ElasticHistory``): the section
+loads of the finite-element solution
 -(K u + M a - f) element by element, the Coriolis and centrifugal loads of the elastic velocities and displacements
 (2 w x u_dot, w x (w x u), alpha x u) left out (``wecss.structure._stress``).
 """
@@ -114,9 +115,9 @@ class ElasticHistory:
 
 @dataclass(frozen=True)
 class FibreField:
-    """The fibre points of the device's frozen flexible bodies and their statistics over the window: ``names``,
-    ``life`` [years], ``damage`` [-], ``maximum`` and ``minimum`` of the signed von Mises stress and ``rms`` of the
-    von Mises stress [Pa]."""
+    """The fibre points of the device's flexible bodies (frozen and elastic) and their statistics over the window:
+    ``names``, ``life`` [years], ``damage`` [-], ``maximum`` and ``minimum`` of the signed von Mises stress and
+    ``rms`` of the von Mises stress [Pa]."""
 
     names: tuple[str, ...]
     life: np.ndarray
