@@ -9,7 +9,7 @@ import xarray as xr
 from ..attributes import apply_attrs, by_pto_kind
 from ..compiled import CompiledScene
 from ..hydro import dof_kinds
-from ..waves import evaluate
+from ..waves import ExcitationModel, evaluate
 from ._model import LinearModel, linearize
 
 
@@ -75,13 +75,7 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     TypeError
         If ``compiled`` is not a CompiledScene.
     """
-    if not isinstance(compiled, CompiledScene):
-        raise TypeError(f"steady_state takes a CompiledScene (wecss.sim.compile_scene); got {type(compiled).__name__}")
-    if compiled.excitation is None:
-        raise ValueError("calm water: the steady state is the equilibrium")
-    if not compiled.linear_controller:
-        raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
-    exc = compiled.excitation
+    exc = frequency_domain_waves(compiled, "steady_state")
     model = linearize(compiled)
     device = compiled.device.model
     amplitudes = response_amplitudes(model, exc.omega, exc.coefficients)  # (nv, n_w)
@@ -133,6 +127,26 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     if "mean_pto_power" in ds:
         ds.mean_pto_power.attrs["long_name"] = "mean absorbed power of the PTO's linear damping (exact, long-time)"
     return ds
+
+
+def frequency_domain_waves(compiled: CompiledScene, caller: str) -> ExcitationModel:
+    """The scene's excitation (its wave components) for the frequency-domain solution, after checking that
+    ``compiled`` is a CompiledScene in waves with a linear controller (``caller`` names the function in the message).
+
+    Raises
+    ------
+    TypeError
+        If ``compiled`` is not a CompiledScene.
+    ValueError
+        In calm water, or for a controller without linear gains.
+    """
+    if not isinstance(compiled, CompiledScene):
+        raise TypeError(f"{caller} takes a CompiledScene (wecss.sim.compile_scene); got {type(compiled).__name__}")
+    if compiled.excitation is None:
+        raise ValueError("calm water: the steady state is the equilibrium")
+    if not compiled.linear_controller:
+        raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
+    return compiled.excitation
 
 
 def _wave_amplitudes(compiled: CompiledScene, omega: np.ndarray) -> np.ndarray:

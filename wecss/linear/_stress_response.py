@@ -27,7 +27,7 @@ import xarray as xr
 from ..compiled import CompiledScene
 from ..compiled.kernels import kinematics
 from ..structure import rigid_load_coordinates
-from ._frequency import _wave_amplitudes, response_amplitudes
+from ._frequency import _wave_amplitudes, frequency_domain_waves, response_amplitudes
 from ._model import equilibrium_maps, linearize
 
 
@@ -52,21 +52,13 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
     TypeError
         If ``compiled`` is not a CompiledScene.
     """
-    if not isinstance(compiled, CompiledScene):
-        raise TypeError(
-            f"stress_response takes a CompiledScene (wecss.sim.compile_scene); got {type(compiled).__name__}"
-        )
+    exc = frequency_domain_waves(compiled, "stress_response")
     model = compiled.device.model
     if not model.elastic_bodies:
         raise ValueError(
             f"device {compiled.device.name!r} has no elastic bodies (flexible.dynamics = 'elastic'): no stress modes "
             "in its equations"
         )
-    if compiled.excitation is None:
-        raise ValueError("calm water: the stresses are their equilibrium values")
-    if not compiled.linear_controller:
-        raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
-    exc = compiled.excitation
     omega = exc.omega
     amplitudes = response_amplitudes(linearize(compiled), omega, exc.coefficients)  # (nv, n_w)
     b0 = equilibrium_maps(compiled)[0]

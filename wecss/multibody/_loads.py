@@ -25,6 +25,7 @@ def joint_reactions(
     total_mass: np.ndarray,
     rigid_mass: np.ndarray,
     state: KinematicState | None = None,
+    inertial: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Wrench each joint transmits from the parent (or ground) to its child's subtree.
 
@@ -43,6 +44,8 @@ def joint_reactions(
         own rows are not a joint load. A flexible body's rows are its M(xi) at ``q`` (``inertial_terms``).
     state : KinematicState, optional
         The kinematics at (q, v) with Bdot and the angular velocities, when the caller has them (default: computed).
+    inertial : (ndarray, ndarray), optional
+        ``inertial_terms`` at this state, when the caller has them (default: computed).
 
     Returns
     -------
@@ -54,7 +57,9 @@ def joint_reactions(
     st = kinematics(model, q, v) if state is None else state
     assert st.Bdot is not None and st.angular_velocity is not None
     acc = st.B @ v_dot + st.Bdot @ v
-    mass, quadratic = inertial_terms(model, q, v, st.angular_velocity, total_mass, rigid_mass)
+    if inertial is None:
+        inertial = inertial_terms(model, q, v, st.angular_velocity, total_mass, rigid_mass)
+    mass, quadratic = inertial
     need = mass @ acc - applied
     n = len(model.bodies)
     force = np.zeros((n, 3))

@@ -175,15 +175,17 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         applied = world.copy()  # world forces, body-axis moments (the convention of B and joint_reactions)
         for i, s in enumerate(start):
             applied[s + 3 : s + 6] = rot[i].T @ world[s + 3 : s + 6]
-        # an elastic device's kinematics from the kernels (the multibody core's rides its attachments in Python)
+        mass, quadratic = inertial_terms(model, qq, vv, omega, p.total_mass, rigid)
+        # an elastic device's kinematics and inertial terms from the kernels' (the multibody core rides its
+        # attachments in Python); a rigid device's reactions keep the core's own arithmetic
         state = KinematicState(rot, pos, b, bdot, omega, model.cart_start) if flexible else None
-        f_j, m_j = joint_reactions(model, qq, vv, a[t], applied, p.total_mass, rigid, state)
+        inertial = (mass, quadratic) if flexible else None
+        f_j, m_j = joint_reactions(model, qq, vv, a[t], applied, p.total_mass, rigid, state, inertial)
         out.joint_force[t], out.joint_moment[t] = f_j, m_j
         for k, i in enumerate(child_of_joint):
             out.joint_force_local[t, k] = rot[i].T @ f_j[k]
             out.joint_moment_local[t, k] = rot[i].T @ m_j[k]
         # closure on the free directions: B' ((M + A_inf)(B a + Bdot v) + H X - applied) = 0
-        mass, quadratic = inertial_terms(model, qq, vv, omega, p.total_mass, rigid)
         acc = b @ a[t] + bdot @ vv
         inertia = mass @ acc + quadratic
         if flexible:  # the PTOs' generalised force by their transmissions (on the modes of the bodies they act on)
