@@ -1,5 +1,5 @@
 """Analysis of results: netCDF I/O, metrics (mean power, CWR, RMS angle, RAO), fatigue (rainflow, streamed over
-many channels; stress fields and life maps) and plots. (The result Dataset is
+many channels; stress fields and life maps; spectral: narrow band and Dirlik) and plots. (The result Dataset is
 built by the runs in ``wecss.sim``.)"""
 
 from ._fatigue import SECONDS_PER_YEAR as SECONDS_PER_YEAR
@@ -28,6 +28,13 @@ from ._plot import plot_timeseries as plot_timeseries
 from ._sn_curves import SN_CURVES as SN_CURVES
 from ._sn_curves import SNCurve as SNCurve
 from ._sn_curves import sn_curve as sn_curve
+from ._spectral_fatigue import SPECTRAL_METHODS as SPECTRAL_METHODS
+from ._spectral_fatigue import dirlik_range_pdf as dirlik_range_pdf
+from ._spectral_fatigue import line_moments as line_moments
+from ._spectral_fatigue import narrow_band_range_pdf as narrow_band_range_pdf
+from ._spectral_fatigue import psd_moments as psd_moments
+from ._spectral_fatigue import spectral_damage_rate as spectral_damage_rate
+from ._spectral_fatigue import spectral_fatigue as spectral_fatigue
 from ._streaming_rainflow import StreamingRainflow as StreamingRainflow
 from ._stress_field import StressFieldRecorder as StressFieldRecorder
 from ._summary_plot import plot_summary as plot_summary
