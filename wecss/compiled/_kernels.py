@@ -959,7 +959,8 @@ def _hydrostatic_into(
 @step_kernel
 def _geometric_into(index: np.ndarray, data: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """The flexible bodies' geometric stiffening -dU3/dxi, U3 = 1/2 sum G_mkl xi_m xi_k xi_l, added to their mode
-    rows of ``out`` (``index``, ``data``: the plant's ``elastic_index``, ``elastic_data``; not inlined: see
+    rows of ``out``: -sum_kl H_jkl xi_k xi_l on mode j's row with the packed force tensor H (``ElasticArrays``;
+    ``index``, ``data``: the plant's ``elastic_index``, ``elastic_data``; not inlined: see
     :func:`_ride_attachment`)."""
     el = elastic_views(index, data)
     size, coordinate, row, geometric = el.size, el.coordinate, el.row, el.geometric
@@ -967,11 +968,15 @@ def _geometric_into(index: np.ndarray, data: np.ndarray, q: np.ndarray, out: np.
         first = coordinate[e]
         r6 = row[e] + 6
         n_e = size[e]
+        xi = q[first : first + n_e]
         for j in range(n_e):
             s = 0.0
             for k in range(n_e):
+                h_jk = geometric[e, j, k]  # views: numba vectorises the contiguous inner sum (4 times faster)
+                inner = 0.0
                 for m in range(n_e):
-                    s += (geometric[e, k, j, m] + 0.5 * geometric[e, j, k, m]) * q[first + k] * q[first + m]
+                    inner += h_jk[m] * xi[m]
+                s += xi[k] * inner
             out[r6 + j] -= s
 
 
@@ -1117,27 +1122,53 @@ def _elastic_mass(
         m = mass[e]
         ct = coupling[e]
         out = el_mass[e]
-        d = el_dmass[e]
+        d = el_dmass[e]  # its mode-mode blocks stay zero (as the Workspace made them)
+        xi = q[first : first + n_e]
         for a in range(3):  # s = s0 + Ct xi
             total = first_moment[e, a]
             for k in range(n_e):
                 total += ct[a, k] * q[first + k]
             sv[a] = total
-        ss = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]
-        for a in range(3):  # P = P0 + sum_k xi_k (P1_k + P1_k') + sum_kl xi_k xi_l P2_kl
-            for b in range(3):
-                total = second_moment[e, a, b]
-                for k in range(n_e):
-                    xk = q[first + k]
-                    total += xk * (inertia_first[e, k, a, b] + inertia_first[e, k, b, a])
+            for b in range(3):  # out[:3, :3] gathers P = P0 + sum_k xi_k (P1s_k + 1/2 sum_j xi_j P2s_kj) first
+                out[a, b] = second_moment[e, a, b]
+        for k in range(n_e):
+            # dP_k = P1s_k + sum_j xi_j P2s_kj (P1s_k = P1_k + P1_k', P2s_kj = P2_kj + P2_jk: the packed invariants)
+            for a in range(3):
+                for b in range(3):
+                    p2_kab = inertia_second[e, k, a, b]  # (nm,) over j: a view, vectorised
+                    total = inertia_first[e, k, a, b]
                     for j in range(n_e):
-                        total += xk * q[first + j] * inertia_second[e, k, j, a, b]
-                pm[a, b] = total
-        trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
-        for a in range(3):  # J_c = tr(P) I - P - (|s|^2 I - s s') / m
+                        total += p2_kab[j] * xi[j]
+                    pm[a, b] = total
+            xk = q[first + k]
+            c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
+            sc = sv[0] * c0 + sv[1] * c1 + sv[2] * c2
+            trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
+            for a in range(3):
+                ca = c0 if a == 0 else (c1 if a == 1 else c2)
+                sa = sv[a]
+                for b in range(3):
+                    out[a, b] += 0.5 * xk * (inertia_first[e, k, a, b] + pm[a, b])
+                    eye = 1.0 if a == b else 0.0
+                    cb = c0 if b == 0 else (c1 if b == 1 else c2)
+                    d[k, a, b] = trace * eye - pm[a, b] - (2.0 * sc * eye - ca * sv[b] - sa * cb) / m
+            for j in range(n_e):  # dM/dxi_k's rotation-mode block: G_k' - c x Ct_j / m
+                x0 = c1 * ct[2, j] - c2 * ct[1, j]
+                x1 = c2 * ct[0, j] - c0 * ct[2, j]
+                x2 = c0 * ct[1, j] - c1 * ct[0, j]
+                for a in range(3):
+                    value = gyroscopic[e, k, j, a] - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
+                    d[k, a, 3 + j] = value
+                    d[k, 3 + j, a] = value
+        ss = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]
+        trace = out[0, 0] + out[1, 1] + out[2, 2]
+        for a in range(3):  # J_c = tr(P) I - P - (|s|^2 I - s s') / m, in place of P
             for b in range(3):
                 eye = 1.0 if a == b else 0.0
-                out[a, b] = trace * eye - pm[a, b] - (ss * eye - sv[a] * sv[b]) / m
+                pm[a, b] = trace * eye - out[a, b] - (ss * eye - sv[a] * sv[b]) / m
+        for a in range(3):
+            for b in range(3):
+                out[a, b] = 0.5 * (pm[a, b] + pm[b, a])
         for k in range(n_e):  # C_c = Cr + sum_j xi_j G_jk - s x Ct_k / m
             c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
             x0 = sv[1] * c2 - sv[2] * c1
@@ -1149,40 +1180,13 @@ def _elastic_mass(
                     total += q[first + j] * gyroscopic[e, j, k, a]
                 out[a, 3 + k] = total - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
                 out[3 + k, a] = out[a, 3 + k]
-            for j in range(n_e):  # M_c = M_ee - Ct' Ct / m
-                out[3 + k, 3 + j] = modal_mass[e, k, j] - (c0 * ct[0, j] + c1 * ct[1, j] + c2 * ct[2, j]) / m
-        for a in range(3 + n_e):  # symmetric
-            for b in range(a + 1, 3 + n_e):
-                mean = 0.5 * (out[a, b] + out[b, a])
-                out[a, b] = mean
-                out[b, a] = mean
-        for k in range(n_e):  # dM/dxi_k
-            c0, c1, c2 = ct[0, k], ct[1, k], ct[2, k]
-            sc = sv[0] * c0 + sv[1] * c1 + sv[2] * c2
-            for a in range(3):  # dP_k = P1_k + P1_k' + sum_l xi_l (P2_kl + P2_lk)
-                for b in range(3):
-                    total = inertia_first[e, k, a, b] + inertia_first[e, k, b, a]
-                    for j in range(n_e):
-                        total += q[first + j] * (inertia_second[e, j, k, a, b] + inertia_second[e, k, j, a, b])
-                    pm[a, b] = total
-            trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
-            for a in range(3):
-                ca = c0 if a == 0 else (c1 if a == 1 else c2)
-                sa = sv[a]
-                for b in range(3):
-                    eye = 1.0 if a == b else 0.0
-                    cb = c0 if b == 0 else (c1 if b == 1 else c2)
-                    d[k, a, b] = trace * eye - pm[a, b] - (2.0 * sc * eye - ca * sv[b] - sa * cb) / m
-            for j in range(n_e):  # G_k' - c x Ct_j / m
-                x0 = c1 * ct[2, j] - c2 * ct[1, j]
-                x1 = c2 * ct[0, j] - c0 * ct[2, j]
-                x2 = c0 * ct[1, j] - c1 * ct[0, j]
-                for a in range(3):
-                    value = gyroscopic[e, k, j, a] - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
-                    d[k, a, 3 + j] = value
-                    d[k, 3 + j, a] = value
-                for i in range(n_e):
-                    d[k, 3 + i, 3 + j] = 0.0
+            for j in range(k + 1):  # M_c = M_ee - Ct' Ct / m
+                value = (
+                    0.5 * (modal_mass[e, k, j] + modal_mass[e, j, k])
+                    - (c0 * ct[0, j] + c1 * ct[1, j] + c2 * ct[2, j]) / m
+                )
+                out[3 + k, 3 + j] = value
+                out[3 + j, 3 + k] = value
     for a in range(active.shape[0]):
         for b in range(active.shape[1]):
             active[a, b] = plant_active_mass[a, b]
@@ -1330,6 +1334,7 @@ def _elastic_inertial(
             y[3 + k] = v[first + k]
         mass = el_mass[e]
         d = el_dmass[e]
+        n_e = size[e]
         for a in range(3):
             total = 0.0
             for b in range(n3):
@@ -1337,20 +1342,29 @@ def _elastic_inertial(
             my[a] = total
         _cross(y, my, tmp)  # (y[:3] is w_b)
         r3 = row[e] + 3
-        for a in range(n3):
-            total = tmp[a] if a < 3 else 0.0
-            for k in range(size[e]):
-                yk = y[3 + k]
-                for b in range(n3):
-                    total += yk * d[k, a, b] * y[b]
-            if a >= 3:
-                j = a - 3
-                half = 0.0
-                for b in range(n3):
-                    for c in range(n3):
-                        half += y[b] * d[j, b, c] * y[c]
-                total -= 0.5 * half
-            quad[r3 + a] = total
+        # dM/dxi_k = [[dJ_k, dC_k], [dC_k', 0]] (its mode-mode block is zero): with u_k = dJ_k w_b and
+        # c_k = dC_k xi_dot, Mdot Y = (sum_k xi_dot_k (u_k + c_k), sum_k xi_dot_k dC_k' w_b) and
+        # Y' dM/dxi_k Y = w_b . (u_k + 2 c_k)
+        for a in range(3):
+            quad[r3 + a] = tmp[a]
+        for i in range(n_e):
+            quad[r3 + 3 + i] = 0.0
+        for k in range(n_e):
+            yk = y[3 + k]
+            half = 0.0
+            for a in range(3):
+                u = d[k, a, 0] * y[0] + d[k, a, 1] * y[1] + d[k, a, 2] * y[2]
+                c = 0.0
+                for i in range(n_e):
+                    c += d[k, a, 3 + i] * y[3 + i]
+                quad[r3 + a] += yk * (u + c)
+                half += y[a] * (u + 2.0 * c)
+                wy = y[a] * yk
+                for i in range(n_e):
+                    quad[r3 + 3 + i] += wy * d[k, a, 3 + i]
+            my[3 + k] = half
+        for k in range(n_e):
+            quad[r3 + 3 + k] -= 0.5 * my[3 + k]
     m = act.shape[0]
     for k in range(m):
         s = 0.0

@@ -168,9 +168,12 @@ class ElasticArrays(NamedTuple):
         velocity and coordinate (the others follow); row : (n_el,) the body's first Cartesian row
         mass : (n_el,) [kg]; first_moment : (n_el, 3) s0 about the undeformed centre of mass [kg m]
         coupling : (n_el, 3, nm) Ct [kg m]; rotational : (n_el, 3, nm) Cr [kg m^2]
-        second_moment : (n_el, 3, 3) P0; inertia_first : (n_el, nm, 3, 3) P1; inertia_second : (n_el, nm, nm, 3, 3)
-        P2; gyroscopic : (n_el, nm, nm, 3) G; modal_mass : (n_el, nm, nm) [kg m^2] (``wecss.structure.Invariants``)
-        geometric : (n_el, nm, nm, nm) the geometric stiffening tensor [N m] (zero without one)
+        second_moment : (n_el, 3, 3) P0; inertia_first : (n_el, nm, 3, 3) P1_k + P1_k' (symmetric);
+        inertia_second : (n_el, nm, 3, 3, nm) P2_kl + P2_lk, l last; gyroscopic : (n_el, nm, nm, 3) G; modal_mass :
+        (n_el, nm, nm) [kg m^2] (``wecss.structure.Invariants``; the kernels need P1 and P2 only in these sums)
+        geometric : (n_el, nm, nm, nm) the geometric stiffening's force tensor [N m]: -dU3/dxi_j =
+        -sum_kl H_jkl xi_k xi_l with H_jkl = sym_kl(G_kjl + G_jkl / 2) from the tensor G of U3 = 1/2 sum G_mkl
+        xi_m xi_k xi_l (zero without one)
         undeformed : (n_el, 3 + nm, 3 + nm) M(0), the block of ``rigid_mass`` on the rotation and mode rows
         active : (n_el, 3 + nm) position of each of those rows among the plant's ``active`` rows, -1 if inactive
     Elastic attachments (a child joint on its flexible parent's attachment of the same name)
@@ -294,7 +297,7 @@ def _views(index: np.ndarray, data: np.ndarray) -> ElasticArrays:
     f += n_el * 9
     inertia_first = data[f : f + n_el * nm * 9].reshape((n_el, nm, 3, 3))
     f += n_el * nm * 9
-    inertia_second = data[f : f + n_el * nm * nm * 9].reshape((n_el, nm, nm, 3, 3))
+    inertia_second = data[f : f + n_el * nm * nm * 9].reshape((n_el, nm, 3, 3, nm))
     f += n_el * nm * nm * 9
     gyroscopic = data[f : f + n_el * nm * nm * 3].reshape((n_el, nm, nm, 3))
     f += n_el * nm * nm * 3
@@ -350,7 +353,7 @@ def elastic_arrays(model: Multibody, active: np.ndarray, ptos: Sequence[PTO] = (
     rotational = np.zeros((n_el, 3, nm))
     second_moment = np.zeros((n_el, 3, 3))
     inertia_first = np.zeros((n_el, nm, 3, 3))
-    inertia_second = np.zeros((n_el, nm, nm, 3, 3))
+    inertia_second = np.zeros((n_el, nm, 3, 3, nm))
     gyroscopic = np.zeros((n_el, nm, nm, 3))
     modal_mass = np.zeros((n_el, nm, nm))
     geometric = np.zeros((n_el, nm, nm, nm))
@@ -368,12 +371,15 @@ def elastic_arrays(model: Multibody, active: np.ndarray, ptos: Sequence[PTO] = (
         mass[e], first_moment[e] = inv.mass, inv.first_moment
         coupling[e, :, :k], rotational[e, :, :k] = inv.translational_coupling, inv.rotational_coupling
         second_moment[e] = inv.second_moment
-        inertia_first[e, :k] = inv.inertia_first
-        inertia_second[e, :k, :k] = inv.inertia_second
+        inertia_first[e, :k] = inv.inertia_first + inv.inertia_first.transpose(0, 2, 1)
+        p2 = inv.inertia_second + inv.inertia_second.transpose(1, 0, 2, 3)  # P2_kl + P2_lk
+        inertia_second[e, :k, :, :, :k] = p2.transpose(0, 2, 3, 1)
         gyroscopic[e, :k, :k] = inv.gyroscopic
         modal_mass[e, :k, :k] = inv.modal_mass
         if el.geometric is not None:
-            geometric[e, :k, :k, :k] = el.geometric
+            g = np.asarray(el.geometric)
+            h = g.transpose(1, 0, 2) + 0.5 * g
+            geometric[e, :k, :k, :k] = 0.5 * (h + h.transpose(0, 2, 1))
         undeformed[e, : 3 + k, : 3 + k] = el.relative_mass(np.zeros(k))[0]
         active_rows[e, : 3 + k] = position[model.cart_start[i] + 3 : model.cart_start[i] + 6 + k]
     attached = [

@@ -18,16 +18,11 @@ from typing import Any
 import numpy as np
 
 from ..hydro import HydroData
-from ..multibody import ActuatorPTO, HydroCoupling, JointPTO, KinematicState, Multibody, StaticModel, kinematics
+from ..multibody import ActuatorPTO, HydroCoupling, JointPTO, KinematicState, Multibody, StaticModel, hat, kinematics
 from ..structure import Frame, natural_modes
 
 MODELS = ("full", "reduced")
 """Elastic coordinates: every nodal DOF of a flexible body, or its reduced basis."""
-
-
-def hat(v: np.ndarray) -> np.ndarray:
-    """The cross-product matrix of ``v`` (3,)."""
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
 @dataclass

@@ -23,15 +23,10 @@ from typing import Any
 
 import numpy as np
 
-from ..multibody import kinematics
+from ..multibody import hat, kinematics
 
 PARTS = ("global", "elastic")
 """The parts of a node's motion: the floating frame's rigid motion carried to it, and the structure's deformation."""
-
-
-def _hat(v: np.ndarray) -> np.ndarray:
-    """The cross-product matrix of ``v`` (3,)."""
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
 @dataclass(frozen=True)
@@ -91,7 +86,7 @@ def node_maps(device: Any, q: np.ndarray) -> NodeMaps:
             at = centre + rotation @ (frame.nodes[k] + deformation[rows[:3]] - reference_centre)
             move = np.zeros((2, 3, nv))
             turn = np.zeros((2, 3, nv))
-            move[0] = frame_velocity - _hat(at - centre) @ spin
+            move[0] = frame_velocity - hat(at - centre) @ spin
             move[1][:, own] = rotation @ phi[rows[:3]]
             turn[0] = spin
             turn[1][:, own] = rotation @ phi[rows[3:]]
