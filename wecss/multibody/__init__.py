@@ -24,6 +24,7 @@ from ._mooring import mooring_matrices as mooring_matrices
 from ._pto import PTO as PTO
 from ._pto import ActuatorPTO as ActuatorPTO
 from ._pto import JointPTO as JointPTO
+from ._se3 import cross3 as cross3
 from ._se3 import hat as hat
 from ._statics import EQUILIBRIUM_TOL as EQUILIBRIUM_TOL
 from ._statics import EquilibriumError as EquilibriumError

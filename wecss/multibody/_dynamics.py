@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._kinematics import KinematicState, kinematics
+from ._se3 import cross3
 from ._tree import Multibody
 
 
@@ -111,14 +112,14 @@ def inertial_terms(
     for i, s in enumerate(model.cart_start):
         w = angular_velocity[i]
         if model.bodies[i].elastic is None:
-            quadratic[s + 3 : s + 6] = np.cross(w, rigid_mass[s + 3 : s + 6, s + 3 : s + 6] @ w)
+            quadratic[s + 3 : s + 6] = cross3(w, rigid_mass[s + 3 : s + 6, s + 3 : s + 6] @ w)
             continue
         derivative = _set_elastic_block(model, i, mass, _modal(model, i, q))
         own = slice(model.mode_velocity_start[i], model.mode_velocity_start[i + 1])
         y = np.concatenate([w, np.asarray(v, dtype=float)[own]])
         rows = slice(s + 3, s + 6 + y.size - 3)
         quadratic[rows] = _elastic_quadratic(derivative, y) @ y
-        quadratic[s + 3 : s + 6] += np.cross(w, mass[s + 3 : s + 6, rows] @ y)
+        quadratic[s + 3 : s + 6] += cross3(w, mass[s + 3 : s + 6, rows] @ y)
     return mass, quadratic
 
 

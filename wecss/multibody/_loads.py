@@ -13,6 +13,7 @@ import numpy as np
 
 from ._dynamics import frame_centre, inertial_terms
 from ._kinematics import KinematicState, kinematics
+from ._se3 import cross3
 from ._tree import Multibody
 
 
@@ -69,7 +70,7 @@ def joint_reactions(
         m_body = need[s + 3 : s + 6] + quadratic[s + 3 : s + 6]
         f = need[s : s + 3]
         force[i] = f
-        moment_origin[i] = st.rotation[i] @ m_body + np.cross(st.position[i], f)
+        moment_origin[i] = st.rotation[i] @ m_body + cross3(st.position[i], f)
     for i in reversed(model.order):
         par = model.parent[i]
         if par >= 0:
@@ -85,5 +86,5 @@ def joint_reactions(
         else:
             point = st.position[i]
         out_f[k] = force[i]
-        out_m[k] = moment_origin[i] - np.cross(point, force[i])
+        out_m[k] = moment_origin[i] - cross3(point, force[i])
     return out_f, out_m

@@ -13,6 +13,12 @@ import numpy as np
 _SMALL = 1e-8
 
 
+def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b of two 3-vectors (3,): ``np.cross``'s arithmetic, term for term (the same numbers), without its
+    overhead on single vectors (about ten times faster; the loads' recovery makes some 16 per step)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
 def hat(w: np.ndarray) -> np.ndarray:
     """Skew-symmetric 3x3 matrix of a 3-vector (``hat(w) @ v == cross(w, v)``); works on stacks (..., 3)."""
     w = np.asarray(w, dtype=float)

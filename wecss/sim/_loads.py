@@ -29,7 +29,7 @@ from ..compiled.kernels import (
     pto_strokes,
     world_jacobian,
 )
-from ..multibody import KinematicState, frame_centre, inertial_terms, joint_reactions
+from ..multibody import KinematicState, cross3, frame_centre, inertial_terms, joint_reactions
 from ._fibre_field import ElasticHistory
 from ._sections import BodyHistory, section_loads
 
@@ -118,7 +118,7 @@ def _pto_cartesian(compiled: CompiledScene, rot: np.ndarray, pos: np.ndarray, fo
                 continue
             s = p.cart_start[i]
             cart[s : s + 3] += end_force[k, e]
-            cart[s + 3 : s + 6] += end_moment[k, e] + np.cross(points[k, e] - pos[i], end_force[k, e])
+            cart[s + 3 : s + 6] += end_moment[k, e] + cross3(points[k, e] - pos[i], end_force[k, e])
     return cart, end_force, end_moment, bodies, points
 
 
@@ -237,8 +237,8 @@ def _frame_motion(model, i: int, q: np.ndarray, v: np.ndarray, v_dot: np.ndarray
     s = model.cart_start[i]
     d, d_dot, d_ddot = coupling @ xi, coupling @ v[own], coupling @ v_dot[own]
     alpha = acc[s + 3 : s + 6]
-    origin = rot.T @ acc[s : s + 3] - np.cross(alpha, d) - np.cross(omega, np.cross(omega, d))
-    origin -= 2 * np.cross(omega, d_dot) + d_ddot
+    origin = rot.T @ acc[s : s + 3] - cross3(alpha, d) - cross3(omega, cross3(omega, d))
+    origin -= 2 * cross3(omega, d_dot) + d_ddot
     return [xi.copy(), v_dot[own].copy(), origin]
 
 
