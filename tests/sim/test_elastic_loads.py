@@ -36,15 +36,21 @@ def _database():
         pytest.skip("shipped database notc-10kw not generated yet")
 
 
-@pytest.fixture(scope="module")
-def elastic_run(tmp_path_factory):
-    """The run's Dataset, the loads it recovered (``Loads``) and the arm's ``FlexibleBody``."""
+@pytest.fixture(scope="module", params=["dynamic", "quasi-static"])
+def elastic_run(tmp_path_factory, request):
+    """The run's Dataset, the loads it recovered (``Loads``) and the arm's ``FlexibleBody``: the arm's modal
+    coordinates dynamic, or all of them held quasi-static (``quasi_static_above = 0``: their equations algebraic,
+    solved by the runner's Newton iteration; the same oracles hold, the balance of the equations with the held
+    coordinates' rates and accelerations zero among them)."""
     raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
     line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
     assert raw.count(line) == 1
     path = tmp_path_factory.mktemp("spec") / "notc-elastic-24.toml"
+    held = ", quasi_static_above = 0" if request.param == "quasi-static" else ""
     path.write_text(
-        raw.replace(line, 'flexible = { modes = 24, damping_ratio = 0.01, elements = 16, dynamics = "elastic" }')
+        raw.replace(
+            line, f'flexible = {{ modes = 24, damping_ratio = 0.01, elements = 16, dynamics = "elastic"{held} }}'
+        )
     )
     sea = {"kind": "regular", "height": 0.28, "period": T, "duration": 4 * T, "ramp": T}
     run_scene = scene(
@@ -63,6 +69,12 @@ def elastic_run(tmp_path_factory):
         patch.setattr(quantities, "recover_loads", spy)
         ds = simulate(run_scene)
     compiled = compile_scene(run_scene)
+    if request.param == "quasi-static":  # the held coordinates move, with no rate and no acceleration
+        assert compiled.device.model.quasi_static_velocities.sum() == compiled.device.model.nv - 2
+        flex = ds.dof_generalised.str.startswith("arm__flex")
+        assert np.abs(ds.generalised_coordinate.sel(dof_generalised=flex)).max() > 1e-4
+        assert not np.any(ds.generalised_velocity.sel(dof_generalised=flex))
+        assert not np.any(ds.generalised_acceleration.sel(dof_generalised=flex))
     return ds, captured["loads"], compiled.device.flexible_body("arm"), compiled.device.model.body_names.index("arm")
 
 

@@ -220,3 +220,51 @@ def test_the_cylinder_rides_on_the_arm_s_node_in_the_kernels(elastic_spec):
         rigid, _ = cylinder.stroke(model, undeformed, kinematics(model, undeformed))
         moved = max(moved, abs(stroke - rigid))
     assert moved > 1e-4  # the node's elastic displacement changes the stroke: the test can tell
+
+
+def test_a_run_with_the_arm_held_quasi_static_is_the_exact_quasi_static_solution(elastic_spec, tmp_path):
+    """All the arm's modal coordinates held quasi-static (``quasi_static_above = 0``): no method named, so
+    generalised-alpha runs (an explicit runner named is refused, naming them). In the small regular wave, over the
+    last two of twelve periods, the pivot angle and the arm's two largest modal coordinates follow the exact
+    frequency-domain steady state of the quasi-static linear model: Z(omega) of the linear model with the held
+    coordinates' columns of mass, added mass, damping and radiation damping left out (they have no rate and no
+    acceleration in any equation), their columns of stiffness kept; to 2e-3 of the amplitudes."""
+    from wecss.linear import linearize
+    from wecss.linear._frequency import frequency_domain_waves
+    from wecss.sim import simulate
+
+    raw = open(elastic_spec).read()
+    spec = tmp_path / "notc-held.toml"
+    spec.write_text(raw.replace('dynamics = "elastic" }', 'dynamics = "elastic", quasi_static_above = 0 }'))
+    sea = {"kind": "regular", "height": 0.02, "period": T, "duration": 12 * T, "ramp": 2 * T}
+    kwargs = {"sea": sea, "controller": {"name": "damping", "parameters": {}}, "radiation": {"method": "state_space"}}
+    with pytest.raises(SceneError, match=r"'beeman' does not solve .* \(arm__flex1, .*these do: generalized-alpha"):
+        compile_scene(scene(str(spec), solver={"method": "beeman", "dt": 0.05}, **kwargs))
+    compiled = compile_scene(scene(str(spec), solver={"dt": 0.05}, outputs={"variables": ["motion", "pto"]}, **kwargs))
+    held = compiled.device.model.quasi_static_velocities
+    assert held.sum() == compiled.device.model.nv - 2
+    ds = simulate(compiled)
+    assert ds.attrs["solver"] == "generalized-alpha"
+    assert any("are held quasi-static" in note for note in ds.attrs["notes"].split("\n"))
+    model = linearize(compiled)
+    waves = frequency_domain_waves(compiled, "this test")
+    (omega,) = waves.omega
+    z = model.dynamic_stiffness(waves.omega)[0]
+    force = model.hydro_jacobian.T @ waves.coefficients[:, 0]  # the wave's generalised force amplitudes
+    dynamic = np.linalg.solve(z, force)  # the dynamic model's steady state
+    z[:, held] = model.stiffness[:, held]
+    amplitude = np.linalg.solve(z, force)
+    names = list(compiled.device.model.velocity_names)
+    late = ds.time.values >= 10 * T
+    t = ds.time.values[late]
+    for name in ("pivot__pitch", "arm__flex1", "arm__flex2"):
+        k = names.index(name)
+        want = compiled.q0[k] + np.real(amplitude[k] * np.exp(1j * omega * t))
+        series = ds.angle.sel(dof_angular=name) if name == "pivot__pitch" else \
+            ds.generalised_coordinate.sel(dof_generalised=name)  # fmt: skip
+        got = series.values[late]
+        span = np.abs(amplitude[k])
+        error = np.abs(got - want).max() / span
+        apart = np.abs(amplitude[k] - dynamic[k]) / span
+        print(f"{name}: {error:.2e} of the amplitude {span:.3g} (quasi-static against dynamic: {apart:.2e})")
+        assert error < 2e-3

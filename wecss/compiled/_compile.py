@@ -118,8 +118,22 @@ class CompiledScene:
     def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
         """The run's initial configuration and generalised velocities: the equilibrium ``q0`` moved by the scene's
         ``initial.displacement`` (velocity-space increments, on the configuration manifold) and its
-        ``initial.velocity`` (zero by default)."""
+        ``initial.velocity`` (zero by default).
+
+        Raises
+        ------
+        SceneError
+            If ``initial.velocity`` gives a rate to a modal coordinate held quasi-static (it has none).
+        """
         delta, velocity = initial_increments(self.scene, self.device)
+        model = self.device.model
+        held = model.quasi_static_velocities
+        if np.any(velocity[held]):
+            names = [n for n, h, x in zip(model.velocity_names, held, velocity, strict=True) if h and x]
+            raise SceneError(
+                f"initial.velocity gives {names} a rate, and they are held quasi-static (flexible.quasi_static_above): "
+                "they have none; leave them out"
+            )
         if not np.any(delta):
             return self.q0.copy(), velocity
         return integrate_configuration(self.plant, self.q0, delta), velocity

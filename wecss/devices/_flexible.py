@@ -45,7 +45,7 @@ from ._members import Member
 
 FLEXIBLE_KEYS = (
     "modes", "damping_ratio", "elements", "theory", "clamp", "inertia_relief", "centrifugal", "dynamics",
-    "geometric_stiffness",
+    "geometric_stiffness", "quasi_static_above",
 )  # fmt: skip
 """Keys of a body's ``flexible`` table (all optional)."""
 DYNAMICS = ("frozen", "elastic")
@@ -88,6 +88,12 @@ class Flexible:
     geometric_stiffness : bool
         With ``dynamics = "elastic"``, the geometric stiffening of the basis's own axial strain (default True;
         ``wecss.structure.axial_geometric_stiffness``).
+    quasi_static_above : float or None
+        With ``dynamics = "elastic"``, the reduced coordinates whose natural frequency (clamped) is above this [Hz]
+        are held quasi-static: their rates and accelerations are neglected and their equations solved as
+        algebraic ones at every step (the structure's static response to the loads of the moment, the inertia of
+        the rigid motion among them; ``docs/flexible.md``). 0: all of them; None (default): none. The right choice
+        when the body's first mode is far above the wave frequencies.
     """
 
     modes: int = 6
@@ -99,6 +105,7 @@ class Flexible:
     centrifugal: bool = False
     dynamics: str = "frozen"
     geometric_stiffness: bool = True
+    quasi_static_above: float | None = None
 
     @classmethod
     def from_spec(cls, where: str, value: Any) -> Flexible:
@@ -139,7 +146,18 @@ class Flexible:
         dynamics = value.get("dynamics", "frozen")
         if dynamics not in DYNAMICS:
             raise ValueError(f"{where}: flexible.dynamics {dynamics!r}; accepted: {list(DYNAMICS)}")
-        return cls(modes, float(ratio), elements, theory, clamp, dynamics=dynamics, **flags)
+        above = value.get("quasi_static_above")
+        if above is not None:
+            if isinstance(above, bool) or not isinstance(above, int | float) or not 0.0 <= above < np.inf:
+                raise ValueError(f"{where}: flexible.quasi_static_above must be a frequency >= 0 [Hz]; got {above!r}")
+            if dynamics != "elastic":
+                raise ValueError(
+                    f"{where}: flexible.quasi_static_above ({above!r} Hz) holds modal coordinates of the equations "
+                    f"of motion quasi-static, and flexible.dynamics is {dynamics!r}; give dynamics = 'elastic', or "
+                    "leave quasi_static_above out"
+                )
+            above = float(above)
+        return cls(modes, float(ratio), elements, theory, clamp, dynamics=dynamics, quasi_static_above=above, **flags)
 
 
 @dataclass(frozen=True, eq=False)
@@ -345,10 +363,15 @@ class FlexibleBody:
         """The body's floating-frame model for the equations of motion (``wecss.multibody.ElasticBody``): its
         invariants about the structural model's own centre of mass (the structure carries the body's mass), an
         attachment per interface (a child joint's under the joint's name, a PTO end's under ``pto:<name>``) and,
-        with ``flexible.geometric_stiffness``, the geometric tensor of the basis's own axial strain."""
+        with ``flexible.geometric_stiffness``, the geometric tensor of the basis's own axial strain; with
+        ``flexible.quasi_static_above``, its coordinates above that frequency held quasi-static."""
         attachments = {name.removeprefix("joint:"): name for name in self.interfaces}
         return ElasticBody.from_basis(
-            self.basis, attachments, geometric=self.flexible.geometric_stiffness, names=self.mode_names
+            self.basis,
+            attachments,
+            geometric=self.flexible.geometric_stiffness,
+            names=self.mode_names,
+            quasi_static_above=self.flexible.quasi_static_above,
         )
 
     def generalised_modes(self) -> GeneralisedModes:

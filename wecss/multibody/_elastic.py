@@ -100,6 +100,10 @@ class ElasticBody:
     geometric : array_like (n, n, n), optional
         The basis's geometric stiffness per unit modal coordinate's axial force
         (``wecss.structure.axial_geometric_stiffness``) [N m]; None: no geometric stiffening.
+    quasi_static : array_like of bool (n,), optional
+        The modal coordinates held quasi-static (condensed): their rates and accelerations are neglected and their
+        equations of motion are algebraic (the structure's static response to the loads of the moment, the
+        inertial loads of the rigid motion among them). Default: none.
 
     Raises
     ------
@@ -111,6 +115,7 @@ class ElasticBody:
     invariants: Invariants
     attachments: Mapping[str, Attachment] = field(default_factory=dict)
     geometric: np.ndarray | None = None
+    quasi_static: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         names = (self.names,) if isinstance(self.names, str) else tuple(self.names)
@@ -141,6 +146,14 @@ class ElasticBody:
             if geo.shape != (n, n, n) or not np.all(np.isfinite(geo)):
                 raise ValueError(f"geometric must be a finite ({n}, {n}, {n}) array [N m]; got shape {geo.shape}")
             object.__setattr__(self, "geometric", geo)
+        held = np.zeros(n, dtype=bool) if self.quasi_static is None else np.asarray(self.quasi_static)
+        if held.shape != (n,) or held.dtype != bool:
+            raise ValueError(
+                f"quasi_static must be {n} booleans (one per modal coordinate {list(names)}); got {self.quasi_static!r}"
+            )
+        held = held.copy()
+        held.flags.writeable = False
+        object.__setattr__(self, "quasi_static", held)
 
     @classmethod
     def from_basis(
@@ -150,10 +163,13 @@ class ElasticBody:
         *,
         geometric: bool = True,
         names: Sequence[str] | None = None,
+        quasi_static_above: float | None = None,
     ) -> ElasticBody:
         """The elastic model of a reduced structure: invariants about its centre of mass, the attachments at named
         points of its frame (``{attachment: frame point}``) and, with ``geometric``, the geometric tensor of its
-        own axial strain. ``names`` default to ``flex1``, ``flex2``, ...
+        own axial strain. ``names`` default to ``flex1``, ``flex2``, ... ``quasi_static_above`` [Hz]: the basis
+        coordinates whose natural frequency (clamped, ``basis.omega`` / 2 pi) is above it are held quasi-static
+        (None: none; 0: all).
 
         Raises
         ------
@@ -171,6 +187,7 @@ class ElasticBody:
             invariants(frame, phi, damping=basis.damping),
             attached,
             axial_geometric_stiffness(frame, phi) if geometric else None,
+            None if quasi_static_above is None else basis.omega / (2 * np.pi) > quasi_static_above,
         )
 
     @property

@@ -443,6 +443,18 @@ class Multibody:
         return tuple(int(x) for x in first + np.concatenate([[0], np.cumsum([b.modes.n for b in self.bodies])]))
 
     @cached_property
+    def quasi_static_velocities(self) -> np.ndarray:
+        """(nv,) bool: the generalised velocities of the elastic bodies' modal coordinates held quasi-static
+        (``ElasticBody.quasi_static``: their rates and accelerations neglected, their equations algebraic)."""
+        out = np.zeros(self.nv, dtype=bool)
+        for i in self.elastic_bodies:
+            elastic = self.bodies[i].elastic
+            assert elastic is not None
+            out[self.mode_velocity_start[i] : self.mode_velocity_start[i + 1]] = elastic.quasi_static
+        out.flags.writeable = False
+        return out
+
+    @cached_property
     def mode_coordinate_start(self) -> tuple[int, ...]:
         """As :attr:`mode_velocity_start`, in the generalised coordinates."""
         first = sum(j.nq for j in self.joints)

@@ -62,6 +62,9 @@ class Capabilities:
     tolerance : bool
         Its step may be chosen from ``solver.tolerance`` (a fixed-step runner whose error shrinks as the step to
         its ``order``; ``wecss.sim.choose_step``).
+    quasi_static : bool
+        It solves the algebraic equations of modal coordinates held quasi-static
+        (``flexible.quasi_static_above``).
     """
 
     radiation: tuple[str, ...] = RADIATION_METHODS
@@ -76,6 +79,7 @@ class Capabilities:
     hydrodynamics: tuple[str, ...] = ()
     order: int = 2
     tolerance: bool = False
+    quasi_static: bool = False
 
     def __post_init__(self) -> None:
         unknown = sorted(set(self.radiation) - set(RADIATION_METHODS))
@@ -168,10 +172,31 @@ class Runner(ABC):
         SceneError
         """
         model = compiled.device.model
+        if compiled.scene.solver.method is not None:  # an unnamed one may still be chosen (``wecss.simulate``)
+            self.refuse_quasi_static(compiled)
         if not self.capabilities.free_base and model.nq != model.nv:
             raise SceneError(
                 f"solver.method {self.name!r} needs joint coordinates; device {compiled.device.name!r} has a free "
                 "base (its quaternion coordinates are not linear): use a nonlinear runner such as 'beeman'"
+            )
+
+    def refuse_quasi_static(self, compiled: Any) -> None:
+        """Refuse a device with modal coordinates held quasi-static (``flexible.quasi_static_above``) unless
+        :attr:`Capabilities.quasi_static`.
+
+        Raises
+        ------
+        SceneError
+            Naming the coordinates and the runners that solve them.
+        """
+        model = compiled.device.model
+        held = [name for name, q in zip(model.velocity_names, model.quasi_static_velocities, strict=True) if q]
+        if held and not self.capabilities.quasi_static:
+            takers = [name for name in available_runners() if runner(name).capabilities.quasi_static]
+            raise SceneError(
+                f"solver.method {self.name!r} does not solve the equations of the modal coordinates held "
+                f"quasi-static ({', '.join(held)}: flexible.quasi_static_above of device {compiled.device.name!r}); "
+                f"these do: {', '.join(takers) or 'none'}"
             )
 
     @abstractmethod

@@ -16,6 +16,12 @@ at the accepted state, for the values the step records). The radiation states
 (state-space memory) follow the trapezoidal rule, A-stable like the scheme, with the hydro velocities of the last
 iterate. With rho_inf = :data:`SPECTRAL_RADIUS` the modes far above 1/h lose 20 % of their amplitude per step
 (numerical damping of what the step cannot resolve), and the wave-frequency motion is second-order accurate.
+
+Modal coordinates held quasi-static (``flexible.quasi_static_above``; ``Multibody.quasi_static_velocities``) have
+no rate and no acceleration: their equations are algebraic. Their unknowns in the iteration are their values at the
+step's end (:func:`_end_state`), their residuals the accelerations the equations give them there (zero at the
+solution), their columns of the matrix the linear model's M^-1 K (the derivative of those accelerations), and their
+predictor the parabola through their last three values.
 """
 
 from __future__ import annotations
@@ -66,13 +72,18 @@ def alpha_chunk(
     w: Workspace,
     coefficients: np.ndarray,
     jacobian: np.ndarray,
+    held: np.ndarray,
+    weight: np.ndarray,
 ) -> tuple[int, int]:
     """Advance ``excitation.shape[0] - 1`` steps from global step ``step0`` (``state`` updated in place; its
     ``acc_prev`` holds the scheme's algorithmic acceleration). ``coefficients``: (alpha_m, alpha_f, gamma, beta);
-    ``jacobian`` (nv, nv): the iteration's matrix J. Returns (status, global step of the failure)."""
+    ``jacobian`` (nv, nv): the iteration's matrix J; ``held`` (nv,): per generalised velocity, the index in q of
+    a modal coordinate held quasi-static, else -1 (see :func:`_end_state`); ``weight`` (nv,): what turns an
+    unknown's Newton step into an acceleration for the stopping test (1, or for a held coordinate 1 / (h^2 beta c),
+    c = (1 - alpha_f) / (1 - alpha_m): the acceleration step that would move the configuration as much).
+    Returns (status, global step of the failure)."""
     h, tol, max_iter, bounded, bound = settings
     q, v, acc, a, z, u_now, _, _, pto_now, _ = state
-    alpha_m, alpha_f, gamma, beta = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
     nv = v.shape[0]
     n_h = u_now.shape[0]
     n_steps = excitation.shape[0] - 1
@@ -87,11 +98,21 @@ def alpha_chunk(
     z1 = np.zeros(z.shape[0], dtype=np.complex128)
     none = np.zeros((n_h, n_h))
     half = 0.5 * h * r.poles
+    moved = np.zeros(nv)  # a held coordinate's change over the last step
+    moved_before = np.zeros(nv)  # and over the one before (the predictor is the parabola through three values)
+    for c in range(nv):
+        if held[c] >= 0:  # a held coordinate has no rate and no acceleration
+            v[c] = 0.0
+            acc[c] = 0.0
+            a[c] = 0.0
     for k in range(n_steps):
         n1 = step0 + k + 1
         t1 = n1 * h
         e1 = excitation[k + 1]
         vd[:] = acc  # predictor: the last step's accelerations
+        for c in range(nv):
+            if held[c] >= 0:  # and the held coordinates' values extrapolated from the last three steps
+                vd[c] = q[held[c]] + 2.0 * moved[c] - moved_before[c]
         u1[:] = u_now
         matvec(r.input_real, u_now, drive0.view(np.float64))  # a real matrix onto the states' real/imag parts
         converged = False
@@ -101,11 +122,7 @@ def alpha_chunk(
         previous = np.inf
         q1 = q
         for iteration in range(max_iter):
-            for c in range(nv):
-                a1[c] = ((1.0 - alpha_f) * vd[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
-            q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
-            for c in range(nv):
-                v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
+            q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1)
             if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(v1))):
                 return LoopStatus.NOT_FINITE, n1
             matvec(r.input_real, u1, drive1.view(np.float64))
@@ -119,23 +136,23 @@ def alpha_chunk(
             stale = False
             scale = 0.0
             for c in range(nv):
-                residual[c] = vd[c] - w.acc[c]
+                residual[c] = (vd[c] if held[c] < 0 else 0.0) - w.acc[c]
                 scale = max(scale, abs(w.acc[c]))
             u1[:] = w.u
             # the Newton step, not the residual, is tested: the stiff coordinates' round-off in the accelerations
             # (their static loads cancel) is far above the floor, and their step J r far below it
             step = jacobian @ residual
-            change = np.max(np.abs(step))
+            change = np.max(np.abs(step) * weight)
             if iteration >= REFRESH_AFTER and change > 0.5 * previous and not refreshed:
                 # slow or no contraction (a motion far from the equilibrium): the matrix made again, here, from
                 # the equations' differences (nv evaluations; kept for the steps after)
                 refreshed = True
                 stale = True
                 out.evaluations[2] += 1
-                _refresh(p, q, v, a, acc, vd, residual, e1 + rad, t1, command, w, coefficients, h, jacobian)
+                _refresh(p, q, v, a, acc, vd, residual, e1 + rad, t1, command, w, coefficients, h, jacobian, held)
                 count += nv
                 step = jacobian @ residual
-                change = np.max(np.abs(step))
+                change = np.max(np.abs(step) * weight)
             previous = change
             if not np.isfinite(change):
                 return LoopStatus.NOT_FINITE, n1
@@ -148,10 +165,7 @@ def alpha_chunk(
             # the equations' loads, strokes and forces of the last evaluation stand for it); v_dot1, not the
             # evaluated accelerations, is the scheme's: an unresolved stiff mode's residual is large and its step
             # J r tiny
-            for c in range(nv):
-                a1[c] = ((1.0 - alpha_f) * vd[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
-                v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
-            q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
+            q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1)
             if stale:  # the last pass made the matrix again: the equations at the accepted state instead
                 count += 1
                 if not configure(p, q1, e1 + rad, t1, w):
@@ -163,9 +177,14 @@ def alpha_chunk(
             return LoopStatus.CORRECTOR_FAILED, n1
         if out_of_bounds(q1, bounded, bound):
             return LoopStatus.OUT_OF_BOUNDS, n1
+        acc[:] = vd
+        for c in range(nv):
+            if held[c] >= 0:  # vd held the coordinate's value
+                acc[c] = 0.0
+                moved_before[c] = moved[c]
+                moved[c] = q1[held[c]] - q[held[c]]
         q[:] = q1
         v[:] = v1
-        acc[:] = vd
         a[:] = a1
         z[:] = z1
         u_now[:] = w.u
@@ -176,6 +195,39 @@ def alpha_chunk(
             return LoopStatus.STROKE_LIMIT, n1
         record_step(out, n1, p, (q, v, acc, w.stroke, w.xdot, w.f, rad, e1, w.terms.out.reshape(-1)))
     return LoopStatus.OK, step0 + n_steps
+
+
+@kernel
+def _end_state(
+    p: Plant,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    acc: np.ndarray,
+    x: np.ndarray,
+    held: np.ndarray,
+    coefficients: np.ndarray,
+    h: float,
+    a1: np.ndarray,
+    v1: np.ndarray,
+) -> np.ndarray:
+    """The step's end from the iteration's unknowns ``x``: the configuration q1 (returned), the velocities ``v1``
+    and the algorithmic accelerations ``a1`` (both filled). ``x`` holds the accelerations v_dot1 at the step's
+    end, and for a coordinate held quasi-static (``held[c]``: its index in q, else -1) its value at the step's end
+    instead (its rate and accelerations are zero)."""
+    alpha_m, alpha_f, gamma, beta = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
+    nv = v.shape[0]
+    for c in range(nv):
+        a1[c] = ((1.0 - alpha_f) * x[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
+    increment = h * v + h * h * ((0.5 - beta) * a + beta * a1)
+    for c in range(nv):
+        v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
+    for c in range(nv):
+        if held[c] >= 0:
+            a1[c] = 0.0
+            v1[c] = 0.0
+            increment[c] = x[c] - q[held[c]]
+    return integrate_configuration(p, q, increment)
 
 
 @kernel
@@ -194,12 +246,12 @@ def _refresh(
     coefficients: np.ndarray,
     h: float,
     jacobian: np.ndarray,
+    held: np.ndarray,
 ) -> None:
     """The iteration's matrix J made again at the iterate ``vd`` (its residual ``residual``): the inverse of the
     residual's derivative, by forward differences of the equations (their memory force held), into
     ``jacobian``. The workspace ``w`` is left with the last, perturbed evaluation: the caller evaluates again
     before it reads ``w``."""
-    alpha_m, alpha_f, gamma, beta = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
     nv = vd.shape[0]
     derivative = np.empty((nv, nv))
     trial = vd.copy()
@@ -209,16 +261,26 @@ def _refresh(
     for col in range(nv):
         eps = 1e-7 * max(1.0, abs(vd[col]))
         trial[col] = vd[col] + eps
-        for c in range(nv):
-            a1[c] = ((1.0 - alpha_f) * trial[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
-            v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
-        q1 = integrate_configuration(p, q, h * v + h * h * ((0.5 - beta) * a + beta * a1))
+        q1 = _end_state(p, q, v, a, acc, trial, held, coefficients, h, a1, v1)
         configure(p, q1, hydro_force, t1, w)
         respond(p, v1, none, command, w)
         for c in range(nv):
-            derivative[c, col] = (trial[c] - w.acc[c] - residual[c]) / eps
+            derivative[c, col] = ((trial[c] if held[c] < 0 else 0.0) - w.acc[c] - residual[c]) / eps
         trial[col] = vd[col]
     jacobian[:, :] = np.linalg.inv(derivative)
+
+
+def _held(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarray]:
+    """Per generalised velocity: the index in q of a modal coordinate held quasi-static, else -1; and ones (the
+    stopping test's weights, set for the held ones by the caller)."""
+    model = controlled.device.model
+    held = np.full(model.nv, -1, dtype=np.int64)
+    modes = model.mode_velocities
+    shift = model.mode_coordinates - modes  # modal coordinates add: one q per v, after the joints'
+    for k, col in enumerate(modes):
+        if model.quasi_static_velocities[col]:
+            held[col] = col + shift[k]
+    return held, np.ones(model.nv)
 
 
 class GeneralizedAlphaRunner(FixedStepRunner):
@@ -234,6 +296,7 @@ class GeneralizedAlphaRunner(FixedStepRunner):
         hydrodynamics=("body-exact", "drag"),
         terms=True,
         order=2,
+        quasi_static=True,
     )
     radiation_reason = (
         "the scheme integrates the radiation states with the motion; a convolution's memory has no state to "
@@ -247,8 +310,13 @@ class GeneralizedAlphaRunner(FixedStepRunner):
         h = controlled.dt
         c = (1 - alpha_f) / (1 - alpha_m)
         s = model.mass + h * gamma * c * model.damping + h * h * beta * c * model.stiffness
+        held, weight = _held(controlled)
+        columns = held >= 0
+        if np.any(columns):  # a held coordinate's unknown is its value: its column of the derivative is M^-1 K's
+            s[:, columns] = model.stiffness[:, columns]
+            weight[columns] = 1.0 / (h * h * beta * c)  # a held step as the acceleration step that moves q as much
         jacobian = np.linalg.solve(s, model.mass)
-        return np.array([alpha_m, alpha_f, gamma, beta]), np.ascontiguousarray(jacobian)
+        return np.array([alpha_m, alpha_f, gamma, beta]), np.ascontiguousarray(jacobian), held, weight
 
     def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:
         return alpha_chunk(*chunk, *prepared)
@@ -278,7 +346,8 @@ GENERALIZED_ALPHA = GeneralizedAlphaRunner()
 def with_elastic_choice(controlled: ControlledScene) -> ControlledScene:
     """``controlled`` to run with generalised-alpha when its scene names no ``solver.method`` and no tolerance,
     its device has elastic bodies, and the default explicit runner (Beeman) cannot carry the plant's fastest
-    undamped mode at the scene's step (:data:`BEEMAN_ELASTIC_LIMIT`); else itself. The result's notes say so.
+    undamped mode at the scene's step (:data:`BEEMAN_ELASTIC_LIMIT`) or some modal coordinates are held
+    quasi-static; else itself. The result's notes say so.
 
     Raises
     ------
@@ -286,23 +355,36 @@ def with_elastic_choice(controlled: ControlledScene) -> ControlledScene:
         If generalised-alpha cannot run the scene (a convolution memory: the message says what to do).
     """
     scene = controlled.scene
-    if scene.solver.method is not None or scene.solver.step_chosen or not controlled.device.model.elastic_bodies:
+    model = controlled.device.model
+    if scene.solver.method is not None or scene.solver.step_chosen or not model.elastic_bodies:
         return controlled
+    held = int(np.count_nonzero(model.quasi_static_velocities))
     rate = fastest_mode(controlled, damped=False)
-    if rate * controlled.dt <= BEEMAN_ELASTIC_LIMIT:
+    if not held and rate * controlled.dt <= BEEMAN_ELASTIC_LIMIT:
         return controlled
     try:
         chosen = replace(scene, solver=replace(scene.solver, method=GENERALIZED_ALPHA.name))
         GENERALIZED_ALPHA.check(chosen)
         GENERALIZED_ALPHA.check_compiled(replace(controlled, scene=chosen))
     except SceneError as err:
+        why = (
+            f"hold {held} modal coordinates quasi-static (only generalised-alpha solves them)"
+            if held
+            else f"have modes up to |s| = {rate:.4g} rad/s, beyond the explicit runners' steps at dt = "
+            f"{controlled.dt:.3g} s"
+        )
         raise SceneError(
-            f"the elastic bodies {list(controlled.device.elastic_bodies)} have modes up to |s| = {rate:.4g} rad/s, "
-            f"beyond the explicit runners' steps at dt = {controlled.dt:.3g} s, and generalised-alpha cannot run "
+            f"the elastic bodies {list(controlled.device.elastic_bodies)} {why}, and generalised-alpha cannot run "
             f"this scene: {err}"
         ) from None
-    note = (
-        f"solver.method: generalized-alpha chosen (no method named; the elastic bodies' fastest undamped mode, "
-        f"{rate:.4g} rad/s, needs an explicit step below {BEEMAN_ELASTIC_LIMIT / rate:.3g} s)"
-    )
+    if held:
+        note = (
+            f"solver.method: generalized-alpha chosen (no method named; {held} modal coordinates are held "
+            "quasi-static, and it solves their equations)"
+        )
+    else:
+        note = (
+            f"solver.method: generalized-alpha chosen (no method named; the elastic bodies' fastest undamped mode, "
+            f"{rate:.4g} rad/s, needs an explicit step below {BEEMAN_ELASTIC_LIMIT / rate:.3g} s)"
+        )
     return replace(controlled, scene=chosen, notes=[*controlled.notes, note])

@@ -87,6 +87,7 @@ class FixedStepRunner(Runner):
         return None
 
     def run(self, controlled: ControlledScene, *, progress: bool = False, stream: ResultStream | None = None) -> Record:
+        self.refuse_quasi_static(controlled)
         return run_fixed_step(self, controlled, progress, stream)
 
 
@@ -207,6 +208,7 @@ def run_fixed_step(
     else:
         work.acc[:] = np.nan
     a0, u0, x0, xd0, f0 = (work.acc.copy(), work.u.copy(), work.stroke.copy(), work.xdot.copy(), work.f.copy())
+    a0[controlled.device.model.quasi_static_velocities] = 0.0  # a held coordinate has no acceleration
     terms0 = work.terms.out.reshape(-1).copy()
     acc, acc_prev = a0.copy(), a0.copy()
     z = np.zeros(r.poles.size, dtype=complex)

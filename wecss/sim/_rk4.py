@@ -136,6 +136,7 @@ class Rk4(FixedStepRunner):
     )
 
     def check_compiled(self, compiled: Any) -> None:
+        super().check_compiled(compiled)
         summary, dt = compiled.radiation_summary, compiled.dt
         if summary.max_pole * dt > RK4_POLE_LIMIT:
             raise SceneError(
