@@ -71,7 +71,8 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     Raises
     ------
     ValueError
-        In calm water, for a controller without linear gains, or for time series of a device with a free base.
+        In calm water, for a controller without linear gains, for time series of a device with a free base, or
+        for a device with modal coordinates held quasi-static (``flexible.quasi_static_above``).
     TypeError
         If ``compiled`` is not a CompiledScene.
     """
@@ -138,10 +139,18 @@ def frequency_domain_waves(compiled: CompiledScene, caller: str) -> ExcitationMo
     TypeError
         If ``compiled`` is not a CompiledScene.
     ValueError
-        In calm water, or for a controller without linear gains.
+        In calm water, for a controller without linear gains, or for a device with modal coordinates held
+        quasi-static (the linear model keeps them dynamic).
     """
     if not isinstance(compiled, CompiledScene):
         raise TypeError(f"{caller} takes a CompiledScene (wecss.sim.compile_scene); got {type(compiled).__name__}")
+    model = compiled.device.model
+    if np.any(model.quasi_static_velocities):
+        raise ValueError(
+            f"{caller}: device {compiled.device.name!r} holds modal coordinates quasi-static "
+            "(flexible.quasi_static_above), and the linear model keeps them dynamic; leave quasi_static_above out "
+            "for the frequency-domain solution of the dynamic model"
+        )
     if compiled.excitation is None:
         raise ValueError("calm water: the steady state is the equilibrium")
     if not compiled.linear_controller:

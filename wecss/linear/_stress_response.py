@@ -48,7 +48,8 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
     Raises
     ------
     ValueError
-        In calm water, for a controller without linear gains, or for a device without elastic bodies.
+        In calm water, for a controller without linear gains, for a device without elastic bodies or with modal
+        coordinates held quasi-static (``flexible.quasi_static_above``: the linear model keeps them dynamic).
     TypeError
         If ``compiled`` is not a CompiledScene.
     """
