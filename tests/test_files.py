@@ -33,7 +33,12 @@ def _signal_a_whole_file_write(tmp_path, sig: int) -> int:  # type: ignore[no-un
     write_netcdf(xr.Dataset({"y": ("t", np.arange(3.0))}), target)
     proc = subprocess.Popen([sys.executable, "-c", WRITER, str(target)], stdout=subprocess.PIPE, text=True)
     assert proc.stdout is not None and proc.stdout.readline().strip() == "writing"
-    time.sleep(0.3)  # inside to_netcdf: 190 MB take about a second
+    # the signal once the temporary is there, inside to_netcdf (190 MB: a fixed sleep raced the write on a quiet
+    # machine, where it had ended before the signal came)
+    deadline = time.monotonic() + 60
+    while not list(tmp_path.glob(".r.nc.*")) and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.001)
+    assert proc.poll() is None, "the writer ended before the signal"
     proc.send_signal(sig)
     try:
         proc.wait(timeout=60)
