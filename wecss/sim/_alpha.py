@@ -270,17 +270,13 @@ def _refresh(
     jacobian[:, :] = np.linalg.inv(derivative)
 
 
-def _held(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarray]:
-    """Per generalised velocity: the index in q of a modal coordinate held quasi-static, else -1; and ones (the
-    stopping test's weights, set for the held ones by the caller)."""
+def _held(controlled: ControlledScene) -> np.ndarray:
+    """Per generalised velocity: the index in q of a modal coordinate held quasi-static, else -1."""
     model = controlled.device.model
     held = np.full(model.nv, -1, dtype=np.int64)
-    modes = model.mode_velocities
-    shift = model.mode_coordinates - modes  # modal coordinates add: one q per v, after the joints'
-    for k, col in enumerate(modes):
-        if model.quasi_static_velocities[col]:
-            held[col] = col + shift[k]
-    return held, np.ones(model.nv)
+    modes = model.quasi_static_velocities[model.mode_velocities]  # modal coordinates add: one q per v
+    held[model.mode_velocities[modes]] = model.mode_coordinates[modes]
+    return held
 
 
 class GeneralizedAlphaRunner(FixedStepRunner):
@@ -310,11 +306,12 @@ class GeneralizedAlphaRunner(FixedStepRunner):
         h = controlled.dt
         c = (1 - alpha_f) / (1 - alpha_m)
         s = model.mass + h * gamma * c * model.damping + h * h * beta * c * model.stiffness
-        held, weight = _held(controlled)
+        held = _held(controlled)
         columns = held >= 0
+        # a held step weighs as the acceleration step that moves the configuration as much
+        weight = np.where(columns, 1.0 / (h * h * beta * c), 1.0)
         if np.any(columns):  # a held coordinate's unknown is its value: its column of the derivative is M^-1 K's
             s[:, columns] = model.stiffness[:, columns]
-            weight[columns] = 1.0 / (h * h * beta * c)  # a held step as the acceleration step that moves q as much
         jacobian = np.linalg.solve(s, model.mass)
         return np.array([alpha_m, alpha_f, gamma, beta]), np.ascontiguousarray(jacobian), held, weight
 
@@ -359,7 +356,7 @@ def with_elastic_choice(controlled: ControlledScene) -> ControlledScene:
     if scene.solver.method is not None or scene.solver.step_chosen or not model.elastic_bodies:
         return controlled
     held = int(np.count_nonzero(model.quasi_static_velocities))
-    rate = fastest_mode(controlled, damped=False)
+    rate = 0.0 if held else fastest_mode(controlled, damped=False)  # with held coordinates it is chosen anyway
     if not held and rate * controlled.dt <= BEEMAN_ELASTIC_LIMIT:
         return controlled
     try:
