@@ -80,3 +80,22 @@ def test_configuration_update_matches_integrate_on_a_free_base():
     q = integrate(model, model.neutral_configuration(), rng.standard_normal(model.nv))
     dv = 0.3 * rng.standard_normal(model.nv)
     np.testing.assert_allclose(K.integrate_configuration(plant, q, dv), integrate(model, q, dv), atol=1e-14)
+
+
+@pytest.mark.parametrize("angle", [1e-9, 1e-5, 3e-3, 0.0099, 0.0101, 0.5, 2.0])
+def test_screw_exponential_matches_the_matrix_exponential(angle):
+    """exp(xi * angle) of a unit-rotation twist (below 0.01 rad from the coefficients' Taylor series, above from
+    sin and cos) against scipy's matrix exponential of the 4 x 4 twist matrix."""
+    from scipy.linalg import expm
+
+    rng = np.random.default_rng(3)
+    w = rng.standard_normal(3)
+    xi = np.concatenate([rng.standard_normal(3), w / np.linalg.norm(w)])
+    rot, trans = np.empty((3, 3)), np.empty(3)
+    K._screw(xi, angle, rot, trans)
+    twist = np.zeros((4, 4))
+    twist[:3, :3] = np.array([[0, -xi[5], xi[4]], [xi[5], 0, -xi[3]], [-xi[4], xi[3], 0]])
+    twist[:3, 3] = xi[:3]
+    reference = expm(twist * angle)
+    np.testing.assert_allclose(rot, reference[:3, :3], rtol=0, atol=2e-15)
+    np.testing.assert_allclose(trans, reference[:3, 3], rtol=0, atol=2e-15 * max(1.0, angle))

@@ -79,3 +79,18 @@ def test_real_form_of_the_state_space_memory_matches_the_complex_update():
         np.testing.assert_allclose(z, reference, rtol=1e-12, atol=1e-14)
         np.testing.assert_allclose(force, -np.real(arrays.output @ reference), rtol=1e-11, atol=1e-13)
         u_now = u_new
+
+
+def test_congruence_of_a_sparse_b_matches_numpy():
+    """A B with many zeros (identity rows, as a flexible body's mode rows, and empty columns): the rows of m that
+    the nonzero entries pick give b' m b as the dense product does."""
+    rng = np.random.default_rng(8)
+    m = _spd(rng, 9)
+    b = np.zeros((9, 5))
+    b[:4, :2] = rng.standard_normal((4, 2))
+    b[4:8, 1:5] = np.eye(4)
+    b[8, 4] = 0.7
+    out, work = np.empty((5, 5)), np.empty((5, 9))
+    congruence(np.ascontiguousarray(b.T), m, work, out)
+    np.testing.assert_allclose(out, b.T @ m @ b, rtol=1e-12, atol=1e-14)
+    np.testing.assert_array_equal(out, out.T)

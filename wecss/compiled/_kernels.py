@@ -29,7 +29,9 @@ from ._pto_law import pto_control_force_kernel
 from ._rotation import so3_log_into
 from ._viscous import TermsWork, configure_viscous, respond_viscous, terms_work
 
-_SMALL = 1e-8
+_SERIES = 1e-2
+"""Below this rotation angle [rad] :func:`_screw` takes its coefficients from their Taylor series (to theta^6:
+the next terms are below 1e-21 of them)."""
 
 
 @kernel
@@ -84,13 +86,16 @@ def _cross(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
 @inline_kernel
 def _screw(xi: np.ndarray, angle: float, rot: np.ndarray, trans: np.ndarray) -> None:
     """exp(xi * angle) as a rotation and a translation (Rodrigues; se3_exp without temporaries):
-    R = I + c1 K + c2 K^2, t = v + c2 w x v + c3 w x (w x v), K = hat(w), K^2 = w w' - |w|^2 I."""
+    R = I + c1 K + c2 K^2, t = v + c2 w x v + c3 w x (w x v), K = hat(w), K^2 = w w' - |w|^2 I, with
+    c1 = sin(theta) / theta, c2 = (1 - cos(theta)) / theta^2, c3 = (theta - sin(theta)) / theta^3, theta = |w|."""
     w0, w1, w2 = xi[3] * angle, xi[4] * angle, xi[5] * angle
     v0, v1, v2 = xi[0] * angle, xi[1] * angle, xi[2] * angle
     theta2 = w0 * w0 + w1 * w1 + w2 * w2
     theta = np.sqrt(theta2)
-    if theta < _SMALL:
-        c1, c2, c3 = 1.0, 0.5, 1.0 / 6.0
+    if theta < _SERIES:  # their Taylor series: exact to round-off here, and no cancellation (nor sin and cos)
+        c1 = 1.0 - theta2 / 6.0 * (1.0 - theta2 / 20.0 * (1.0 - theta2 / 42.0))
+        c2 = 0.5 * (1.0 - theta2 / 12.0 * (1.0 - theta2 / 30.0 * (1.0 - theta2 / 56.0)))
+        c3 = (1.0 - theta2 / 20.0 * (1.0 - theta2 / 42.0 * (1.0 - theta2 / 72.0))) / 6.0
     else:
         c1 = np.sin(theta) / theta
         c2 = (1.0 - np.cos(theta)) / theta2
@@ -184,7 +189,10 @@ class ElasticWork(NamedTuple):
     att_cols, att_cols_dot (n_att, nm, 6): the world twists of the parent's mode columns on each elastic attachment
     and their time derivatives (they differ between the children of one flexible body, so they are kept per
     attachment, not in ``cols``); active_mass (m, m): ``Plant.active_mass`` with the flexible bodies' M(xi) at the
-    configuration; mass (n_el, 3 + nm, 3 + nm) M(xi), dmass (n_el, nm, 3 + nm, 3 + nm) dM/dxi; quad (n_cart,)
+    configuration; mass (n_el, 3 + nm, 3 + nm) M(xi) on its rotation rows and columns (its mode-mode block does
+    not depend on xi and is not filled: M(0)'s, in ``Plant.active_mass``), dmass (n_el, nm, 3, 3 + nm) the
+    rotation rows of dM/dxi (the mode rows are their transposes' and zero: dM/dxi_k = [[dJ_k, dC_k], [dC_k', 0]]);
+    quad (n_cart,)
     their quadratic-velocity vector (D M + Q) Y on the rotation and mode rows; scratch y, my (3 + nm,)
     """
 
@@ -206,7 +214,7 @@ def elastic_work_size(index: np.ndarray) -> int:
     if n_el == 0:
         return 0
     k = 3 + nm
-    return 2 * n_att * nm * 6 + m * m + n_el * k * k + n_el * nm * k * k + 2 * k + n_cart
+    return 2 * n_att * nm * 6 + m * m + n_el * k * k + n_el * nm * 3 * k + 2 * k + n_cart
 
 
 @inline_kernel
@@ -223,8 +231,8 @@ def elastic_work(index: np.ndarray, work: np.ndarray) -> ElasticWork:
     o += m * m
     mass = work[o : o + n_el * k * k].reshape((n_el, k, k))
     o += n_el * k * k
-    dmass = work[o : o + n_el * nm * k * k].reshape((n_el, nm, k, k))
-    o += n_el * nm * k * k
+    dmass = work[o : o + n_el * nm * 3 * k].reshape((n_el, nm, 3, k))
+    o += n_el * nm * 3 * k
     y = work[o : o + k]
     o += k
     my = work[o : o + k]
@@ -1103,17 +1111,17 @@ def _elastic_mass(
     bat: np.ndarray, mass_work: np.ndarray, mass_out: np.ndarray, factor: np.ndarray, sv: np.ndarray, pm: np.ndarray,
 ) -> bool:  # fmt: skip
     """Each flexible body's M(xi) and dM/dxi about its instantaneous centre of mass (``ElasticBody.relative_mass``)
-    into ``ElasticWork.mass``, ``dmass``, and into ``ElasticWork.active_mass``: ``plant_active_mass`` with
-    M(xi) - M(0) added on their active rotation and mode rows; then M* and its factor from it
-    (:func:`_factor_mass`, whose result it returns). ``index``, ``data``, ``work``: see :func:`_frames`; the others
-    as in the Plant and the Workspace; ``sv`` (3,) and ``pm`` (3, 3) are scratch; not inlined: see
-    :func:`_ride_attachment`."""
+    into ``ElasticWork.mass``, ``dmass`` (their rotation rows), and into ``ElasticWork.active_mass``:
+    ``plant_active_mass`` with M(xi) - M(0) added on their active rotation rows and columns; then M* and its
+    factor from it (:func:`_factor_mass`, whose result it returns). ``index``, ``data``, ``work``: see
+    :func:`_frames`; the others as in the Plant and the Workspace; ``sv`` (3,) and ``pm`` (3, 3) are scratch; not
+    inlined: see :func:`_ride_attachment`."""
     el = elastic_views(index, data)
     size, coordinate, mass, first_moment, coupling, rotational = el.size, el.coordinate, el.mass, el.first_moment, \
         el.coupling, el.rotational  # fmt: skip
     second_moment, inertia_first, inertia_second, gyroscopic = el.second_moment, el.inertia_first, \
         el.inertia_second, el.gyroscopic  # fmt: skip
-    modal_mass, undeformed, active_rows = el.modal_mass, el.undeformed, el.active
+    undeformed, active_rows = el.undeformed, el.active
     ew = elastic_work(index, work)
     active, el_mass, el_dmass = ew.active_mass, ew.mass, ew.dmass
     for e in range(size.shape[0]):
@@ -1122,7 +1130,7 @@ def _elastic_mass(
         m = mass[e]
         ct = coupling[e]
         out = el_mass[e]
-        d = el_dmass[e]  # its mode-mode blocks stay zero (as the Workspace made them)
+        d = el_dmass[e]  # the rotation rows of dM/dxi_k (ElasticWork)
         xi = q[first : first + n_e]
         for a in range(3):  # s = s0 + Ct xi
             total = first_moment[e, a]
@@ -1157,9 +1165,7 @@ def _elastic_mass(
                 x1 = c2 * ct[0, j] - c0 * ct[2, j]
                 x2 = c0 * ct[1, j] - c1 * ct[0, j]
                 for a in range(3):
-                    value = gyroscopic[e, k, j, a] - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
-                    d[k, a, 3 + j] = value
-                    d[k, 3 + j, a] = value
+                    d[k, a, 3 + j] = gyroscopic[e, k, j, a] - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
         ss = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]
         trace = out[0, 0] + out[1, 1] + out[2, 2]
         for a in range(3):  # J_c = tr(P) I - P - (|s|^2 I - s s') / m, in place of P
@@ -1180,13 +1186,7 @@ def _elastic_mass(
                     total += q[first + j] * gyroscopic[e, j, k, a]
                 out[a, 3 + k] = total - (x0 if a == 0 else (x1 if a == 1 else x2)) / m
                 out[3 + k, a] = out[a, 3 + k]
-            for j in range(k + 1):  # M_c = M_ee - Ct' Ct / m
-                value = (
-                    0.5 * (modal_mass[e, k, j] + modal_mass[e, j, k])
-                    - (c0 * ct[0, j] + c1 * ct[1, j] + c2 * ct[2, j]) / m
-                )
-                out[3 + k, 3 + j] = value
-                out[3 + j, 3 + k] = value
+        # (the mode-mode block M_ee - Ct' Ct / m does not depend on xi: M(0)'s, in the plant's active_mass)
     for a in range(active.shape[0]):
         for b in range(active.shape[1]):
             active[a, b] = plant_active_mass[a, b]
@@ -1195,7 +1195,7 @@ def _elastic_mass(
             ka = active_rows[e, a]
             if ka < 0:
                 continue
-            for b in range(3 + size[e]):
+            for b in range(3 + size[e] if a < 3 else 3):  # the rotation rows and columns change with xi
                 kb = active_rows[e, b]
                 if kb >= 0:
                     active[ka, kb] += el_mass[e, a, b] - undeformed[e, a, b]
@@ -1431,15 +1431,25 @@ def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     return w.u
 
 
-@kernel
+@inline_kernel
 def integrate_configuration(p: Plant, q: np.ndarray, dv: np.ndarray) -> np.ndarray:
     """q moved by the velocity increment dv (free bases on SO(3) through their quaternion; joint and modal
-    coordinates add)."""
+    coordinates add). (Inlined, so that its callers do not pass the Plant through a call, whose reference counts
+    cost about 1 us: see ``_jit.inline_kernel``; :func:`_integrate` takes the arrays it needs.)"""
+    return _integrate(p.q_start, p.col_start, p.free, p.n_cols, p.mode_row, p.cart_coordinate, p.cart_column, q, dv)
+
+
+@kernel
+def _integrate(
+    q_start: np.ndarray, col_start: np.ndarray, free: np.ndarray, n_cols: np.ndarray, mode_row: np.ndarray,
+    cart_coordinate: np.ndarray, cart_column: np.ndarray, q: np.ndarray, dv: np.ndarray,
+) -> np.ndarray:  # fmt: skip
+    """:func:`integrate_configuration` from the Plant's arrays of the same names."""
     out = q.copy()
-    for i in range(p.com0.shape[0]):
-        iq = p.q_start[i]
-        iv = p.col_start[i]
-        if p.free[i] == 1:
+    for i in range(q_start.shape[0]):
+        iq = q_start[i]
+        iv = col_start[i]
+        if free[i] == 1:
             out[iq : iq + 3] += dv[iv : iv + 3]
             r = dv[iv + 3 : iv + 6].copy()
             angle = np.sqrt(np.sum(r**2))
@@ -1454,11 +1464,11 @@ def integrate_configuration(p: Plant, q: np.ndarray, dv: np.ndarray) -> np.ndarr
             quat = quat_multiply(q[iq + 3 : iq + 7].copy(), e)
             out[iq + 3 : iq + 7] = quat / np.sqrt(np.sum(quat**2))
         else:
-            for k in range(p.n_cols[i]):
+            for k in range(n_cols[i]):
                 out[iq + k] += dv[iv + k]
-    for k in range(p.mode_row.shape[0]):
-        row = p.mode_row[k]
-        out[p.cart_coordinate[row]] += dv[p.cart_column[row]]
+    for k in range(mode_row.shape[0]):
+        row = mode_row[k]
+        out[cart_coordinate[row]] += dv[cart_column[row]]
     return out
 
 

@@ -66,14 +66,17 @@ def _numpy_congruence(bt: np.ndarray, m: np.ndarray, work: np.ndarray, out: np.n
 @loop_kernel(_numpy_congruence)
 def congruence(bt: np.ndarray, m: np.ndarray, work: np.ndarray, out: np.ndarray) -> None:
     """out = b' m b from bt = b' (k, n) and a symmetric m (n, n), exactly symmetric; ``work`` (k, n) is scratch.
-    (Every sum runs over contiguous rows.)"""
+    (Every sum runs over contiguous rows; m b is gathered from the rows of m that b's nonzero entries pick, which
+    skips most of the work for a B with many zeros, such as one whose modes' rows are the identity.)"""
     k, n = bt.shape
     for c in range(k):
         for i in range(n):
-            s = 0.0
-            for j in range(n):
-                s += m[i, j] * bt[c, j]
-            work[c, i] = s
+            work[c, i] = 0.0
+        for j in range(n):
+            weight = bt[c, j]
+            if weight != 0.0:
+                for i in range(n):  # m[j, i] = m[i, j]
+                    work[c, i] += weight * m[j, i]
     for r in range(k):
         for c in range(r + 1):
             s = 0.0

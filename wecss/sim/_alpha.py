@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from ..compiled import Plant, RadiationArrays
-from ..compiled.kernels import Workspace, configure, integrate_configuration, kernel, matvec, respond
+from ..compiled.kernels import Workspace, configure, inline_kernel, integrate_configuration, kernel, matvec, respond
 from ..control import ControlledScene
 from ..linear import linearize
 from ..scene import Capabilities, SceneError
@@ -91,6 +91,8 @@ def alpha_chunk(
     a1 = np.empty(nv)
     v1 = np.empty(nv)
     residual = np.empty(nv)
+    step = np.empty(nv)
+    increment = np.empty(nv)
     u1 = np.empty(n_h)
     rad = np.empty(n_h)
     drive0 = np.zeros(z.shape[0], dtype=np.complex128)
@@ -122,8 +124,8 @@ def alpha_chunk(
         previous = np.inf
         q1 = q
         for iteration in range(max_iter):
-            q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1)
-            if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(v1))):
+            q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1, increment)
+            if not (_finite(q1) and _finite(v1)):
                 return LoopStatus.NOT_FINITE, n1
             matvec(r.input_real, u1, drive1.view(np.float64))
             for j in range(z.shape[0]):  # trapezoidal radiation states
@@ -141,8 +143,8 @@ def alpha_chunk(
             u1[:] = w.u
             # the Newton step, not the residual, is tested: the stiff coordinates' round-off in the accelerations
             # (their static loads cancel) is far above the floor, and their step J r far below it
-            step = jacobian @ residual
-            change = np.max(np.abs(step) * weight)
+            matvec(jacobian, residual, step)
+            change = _weighted_max(step, weight)
             if iteration >= REFRESH_AFTER and change > 0.5 * previous and not refreshed:
                 # slow or no contraction (a motion far from the equilibrium): the matrix made again, here, from
                 # the equations' differences (nv evaluations; kept for the steps after)
@@ -151,8 +153,8 @@ def alpha_chunk(
                 out.evaluations[2] += 1
                 _refresh(p, q, v, a, acc, vd, residual, e1 + rad, t1, command, w, coefficients, h, jacobian, held)
                 count += nv
-                step = jacobian @ residual
-                change = np.max(np.abs(step) * weight)
+                matvec(jacobian, residual, step)
+                change = _weighted_max(step, weight)
             previous = change
             if not np.isfinite(change):
                 return LoopStatus.NOT_FINITE, n1
@@ -165,7 +167,7 @@ def alpha_chunk(
             # the equations' loads, strokes and forces of the last evaluation stand for it); v_dot1, not the
             # evaluated accelerations, is the scheme's: an unresolved stiff mode's residual is large and its step
             # J r tiny
-            q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1)
+            q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1, increment)
             if stale:  # the last pass made the matrix again: the equations at the accepted state instead
                 count += 1
                 if not configure(p, q1, e1 + rad, t1, w):
@@ -198,6 +200,27 @@ def alpha_chunk(
 
 
 @kernel
+def _finite(x: np.ndarray) -> bool:
+    """Every entry of ``x`` finite (no temporaries, unlike ``np.all(np.isfinite(x))``)."""
+    for c in range(x.shape[0]):
+        if not np.isfinite(x[c]):
+            return False
+    return True
+
+
+@kernel
+def _weighted_max(step: np.ndarray, weight: np.ndarray) -> float:
+    """max_c |step_c| weight_c; NaN if any of them is NaN (the caller's finiteness test catches it)."""
+    largest = 0.0
+    for c in range(step.shape[0]):
+        value = abs(step[c]) * weight[c]
+        if np.isnan(value):
+            return value
+        largest = max(largest, value)
+    return largest
+
+
+@inline_kernel
 def _end_state(
     p: Plant,
     q: np.ndarray,
@@ -210,17 +233,18 @@ def _end_state(
     h: float,
     a1: np.ndarray,
     v1: np.ndarray,
+    increment: np.ndarray,
 ) -> np.ndarray:
     """The step's end from the iteration's unknowns ``x``: the configuration q1 (returned), the velocities ``v1``
-    and the algorithmic accelerations ``a1`` (both filled). ``x`` holds the accelerations v_dot1 at the step's
-    end, and for a coordinate held quasi-static (``held[c]``: its index in q, else -1) its value at the step's end
-    instead (its rate and accelerations are zero)."""
+    and the algorithmic accelerations ``a1`` (both filled; ``increment`` (nv,) is scratch). ``x`` holds the
+    accelerations v_dot1 at the step's end, and for a coordinate held quasi-static (``held[c]``: its index in q,
+    else -1) its value at the step's end instead (its rate and accelerations are zero). (Inlined: a call that
+    passes the Plant costs about 1 us.)"""
     alpha_m, alpha_f, gamma, beta = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
     nv = v.shape[0]
     for c in range(nv):
         a1[c] = ((1.0 - alpha_f) * x[c] + alpha_f * acc[c] - alpha_m * a[c]) / (1.0 - alpha_m)
-    increment = h * v + h * h * ((0.5 - beta) * a + beta * a1)
-    for c in range(nv):
+        increment[c] = h * v[c] + h * h * ((0.5 - beta) * a[c] + beta * a1[c])
         v1[c] = v[c] + h * ((1.0 - gamma) * a[c] + gamma * a1[c])
     for c in range(nv):
         if held[c] >= 0:
@@ -257,11 +281,12 @@ def _refresh(
     trial = vd.copy()
     a1 = np.empty(nv)
     v1 = np.empty(nv)
+    increment = np.empty(nv)
     none = np.zeros((hydro_force.shape[0], hydro_force.shape[0]))
     for col in range(nv):
         eps = 1e-7 * max(1.0, abs(vd[col]))
         trial[col] = vd[col] + eps
-        q1 = _end_state(p, q, v, a, acc, trial, held, coefficients, h, a1, v1)
+        q1 = _end_state(p, q, v, a, acc, trial, held, coefficients, h, a1, v1, increment)
         configure(p, q1, hydro_force, t1, w)
         respond(p, v1, none, command, w)
         for c in range(nv):
