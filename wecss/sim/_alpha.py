@@ -12,10 +12,11 @@ when its step J r (r = v_dot1 - a) is below ``solver.corrector_tol`` of the larg
 motion far from the equilibrium, where the linear model's matrix no longer fits), the matrix is made again from
 differences of the equations at the iterate (nv evaluations) and kept for the steps after; the result's
 ``iteration_matrix_refreshes`` counts them (an iteration that ends on that pass evaluates the equations once more,
-at the accepted state, for the values the step records). The radiation states
-(state-space memory) follow the trapezoidal rule, A-stable like the scheme, with the hydro velocities of the last
-iterate. With rho_inf = :data:`SPECTRAL_RADIUS` the modes far above 1/h lose 20 % of their amplitude per step
-(numerical damping of what the step cannot resolve), and the wave-frequency motion is second-order accurate.
+at the accepted state, for the values the step records). The radiation states (state-space memory) follow the
+trapezoidal rule, A-stable like the scheme, with the iterate's hydro velocities (its velocities through the hydro
+Jacobian of the last evaluation). With rho_inf = :data:`SPECTRAL_RADIUS` the modes far above 1/h lose 20 % of
+their amplitude per step (numerical damping of what the step cannot resolve), and the wave-frequency motion is
+second-order accurate.
 
 Modal coordinates held quasi-static (``flexible.quasi_static_above``; ``Multibody.quasi_static_velocities``) have
 no rate and no acceleration: their equations are algebraic. Their unknowns in the iteration are their values at the
@@ -115,7 +116,6 @@ def alpha_chunk(
         for c in range(nv):
             if held[c] >= 0:  # and the held coordinates' values extrapolated from the last three steps
                 vd[c] = q[held[c]] + 2.0 * moved[c] - moved_before[c]
-        u1[:] = u_now
         matvec(r.input_real, u_now, drive0.view(np.float64))  # a real matrix onto the states' real/imag parts
         converged = False
         refreshed = False
@@ -127,6 +127,10 @@ def alpha_chunk(
             q1 = _end_state(p, q, v, a, acc, vd, held, coefficients, h, a1, v1, increment)
             if not (_finite(q1) and _finite(v1)):
                 return LoopStatus.NOT_FINITE, n1
+            # the iterate's hydro velocities, through the hydro Jacobian of the last evaluation (the workspace holds
+            # the initial state's before the first step): a radiation force one iteration behind the velocities
+            # would cost an iteration per step
+            matvec(w.bh, v1, u1)
             matvec(r.input_real, u1, drive1.view(np.float64))
             for j in range(z.shape[0]):  # trapezoidal radiation states
                 z1[j] = ((1.0 + half[j]) * z[j] + 0.5 * h * (drive0[j] + drive1[j])) / (1.0 - half[j])
@@ -140,7 +144,6 @@ def alpha_chunk(
             for c in range(nv):
                 residual[c] = (vd[c] if held[c] < 0 else 0.0) - w.acc[c]
                 scale = max(scale, abs(w.acc[c]))
-            u1[:] = w.u
             # the Newton step, not the residual, is tested: the stiff coordinates' round-off in the accelerations
             # (their static loads cancel) is far above the floor, and their step J r far below it
             matvec(jacobian, residual, step)
