@@ -9,7 +9,7 @@ import pytest
 from tests.radiation.analytic import known_system
 from wecss.compiled import from_state_space
 from wecss.compiled._linalg import congruence, matvec_t_add
-from wecss.compiled.kernels import cholesky, cholesky_solve, matvec, matvec_add
+from wecss.compiled.kernels import cholesky, cholesky_solve, lu_factor, lu_solve, matvec, matvec_add
 from wecss.radiation import RadiationStateSpace
 from wecss.sim._memory import memory_advance, memory_history
 
@@ -37,6 +37,37 @@ def test_cholesky_refuses_a_matrix_that_is_not_positive_definite():
     a = np.diag([1.0, -1e-3, 2.0])
     assert not cholesky(a, np.zeros((3, 3)))
     assert not cholesky(np.zeros((2, 2)), np.zeros((2, 2)))
+
+
+@pytest.mark.parametrize("n", [1, 4, 23])
+def test_lu_solve_matches_numpy_and_scipys_factors(n):
+    """Non-symmetric matrices, some with a zero leading entry (a pivot must be exchanged): the factors are
+    LAPACK's (scipy.linalg.lu_factor) and the solution numpy's; the solve works in place too."""
+    import scipy.linalg
+
+    rng = np.random.default_rng(n)
+    for trial in range(5):
+        a = rng.standard_normal((n, n)) + (0.0 if trial % 2 else 3.0) * np.eye(n)
+        if trial == 1 and n > 1:
+            a[0, 0] = 0.0
+        b = rng.standard_normal(n)
+        lu, pivots = a.copy(), np.full(n, -1, dtype=np.int64)
+        assert lu_factor(lu, pivots)
+        want_lu, want_pivots = scipy.linalg.lu_factor(a)
+        np.testing.assert_array_equal(pivots, want_pivots)
+        np.testing.assert_allclose(lu, want_lu, rtol=1e-10, atol=1e-12)
+        out = np.empty(n)
+        lu_solve(lu, pivots, b, out)
+        np.testing.assert_allclose(out, np.linalg.solve(a, b), rtol=1e-9, atol=1e-12)
+        lu_solve(lu, pivots, b, b)
+        np.testing.assert_allclose(b, out, rtol=1e-14, atol=0.0)
+
+
+def test_lu_refuses_a_singular_matrix():
+    a = np.array([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]])
+    assert not lu_factor(a, np.zeros(3, dtype=np.int64))
+    assert not lu_factor(np.zeros((2, 2)), np.zeros(2, dtype=np.int64))
+    assert not lu_factor(np.array([[np.nan]]), np.zeros(1, dtype=np.int64))
 
 
 def test_products_match_numpy():

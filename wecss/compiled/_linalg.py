@@ -140,6 +140,77 @@ def cholesky_solve(factor: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
         out[i] = s / factor[i, i]
 
 
+def _numpy_lu_factor(a: np.ndarray, pivots: np.ndarray) -> bool:
+    import scipy.linalg
+
+    lu, piv = scipy.linalg.lu_factor(a, check_finite=False)
+    if not np.all(np.isfinite(lu)) or np.any(np.diag(lu) == 0.0):
+        return False
+    a[:] = lu
+    pivots[:] = piv
+    return True
+
+
+@loop_kernel(_numpy_lu_factor)
+def lu_factor(a: np.ndarray, pivots: np.ndarray) -> bool:
+    """LU factorisation with partial pivoting of the square ``a`` (n, n) in place: P a = L U, L unit lower
+    triangular below the diagonal of ``a``, U on and above it; ``pivots`` (n,) the row exchanged with row i at
+    step i (LAPACK's convention, 0-based, as ``scipy.linalg.lu_factor``).
+
+    Returns False (``a`` then undefined) when a pivot is zero or not finite: ``a`` is singular (or holds NaN).
+    """
+    n = a.shape[0]
+    for j in range(n):
+        p = j
+        largest = abs(a[j, j])
+        for i in range(j + 1, n):
+            if abs(a[i, j]) > largest:
+                largest = abs(a[i, j])
+                p = i
+        if not (largest > 0.0 and np.isfinite(largest)):
+            return False
+        pivots[j] = p
+        if p != j:
+            for k in range(n):
+                a[j, k], a[p, k] = a[p, k], a[j, k]
+        d = 1.0 / a[j, j]
+        for i in range(j + 1, n):
+            a[i, j] *= d
+            factor = a[i, j]
+            if factor != 0.0:
+                for k in range(j + 1, n):
+                    a[i, k] -= factor * a[j, k]
+    return True
+
+
+def _numpy_lu_solve(lu: np.ndarray, pivots: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
+    import scipy.linalg
+
+    out[:] = scipy.linalg.lu_solve((lu, pivots), b, check_finite=False)
+
+
+@loop_kernel(_numpy_lu_solve)
+def lu_solve(lu: np.ndarray, pivots: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
+    """out = a^-1 b from the factors of :func:`lu_factor`; ``out`` may be ``b``."""
+    n = lu.shape[0]
+    for i in range(n):  # (a no-op when out is b)
+        out[i] = b[i]
+    for i in range(n):  # the row exchanges, in order
+        p = pivots[i]
+        if p != i:
+            out[i], out[p] = out[p], out[i]
+    for i in range(n):  # L y = P b
+        s = out[i]
+        for k in range(i):
+            s -= lu[i, k] * out[k]
+        out[i] = s
+    for i in range(n - 1, -1, -1):  # U x = y
+        s = out[i]
+        for k in range(i + 1, n):
+            s -= lu[i, k] * out[k]
+        out[i] = s / lu[i, i]
+
+
 def complex_columns(matrix: np.ndarray) -> np.ndarray:
     """The real matrix R with u @ R viewed as complex equal to u @ matrix, for real u: real and imaginary parts
     interleaved by column (one real matrix product instead of a complex one)."""

@@ -37,6 +37,8 @@ from ._kernels import world_jacobian as world_jacobian
 from ._linalg import cholesky as cholesky
 from ._linalg import cholesky_solve as cholesky_solve
 from ._linalg import complex_columns as complex_columns
+from ._linalg import lu_factor as lu_factor
+from ._linalg import lu_solve as lu_solve
 from ._linalg import matvec as matvec
 from ._linalg import matvec_add as matvec_add
 from ._linalg import real_part_rows as real_part_rows

@@ -145,7 +145,7 @@ def stiff_pto_hint(compiled: CompiledScene) -> str:
         return (
             f" The elastic bodies {list(compiled.device.elastic_bodies)} set the fastest mode (|s| = {rate:.4g} "
             "rad/s): with an explicit runner give a smaller solver.dt; with generalized-alpha, a motion far from the "
-            "equilibrium (its iteration matrix's) may need a smaller solver.dt."
+            "equilibrium (where its iteration matrix's damping and stiffness come from) may need a smaller solver.dt."
         )
     if gains and steps < GOOD_STEPS_PER_MODE:
         return (
