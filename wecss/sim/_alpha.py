@@ -4,7 +4,7 @@ coordinates) no explicit step can carry at the wave step.
 
 Per step, the accelerations v_dot1 at the step's end solve v_dot1 = a(q1, v1, t1), with q1 and v1 the scheme's
 updates from v_dot1 (module docstring of ``_generalized_alpha``), by a modified Newton iteration with the matrix
-J = S^-1 M*, S = M* + h gamma c C + h^2 beta c K the derivative of the residual times M*. S is made once per step,
+J = S^-1 M*, S = M* + h gamma c C + h^2 beta c K (M* times the residual's derivative). S is made once per step,
 at the configuration of its first evaluation (the predictor's): M*(q) and the PTOs' G(q)' diag(h gamma c c_pto +
 h^2 beta c k_pto) G(q) there (the linear PTO gains of the scene's controller), the rest of C and K the linear
 model's about the equilibrium. A motion far from the equilibrium changes M* (the bodies' relative angles) and the
@@ -186,7 +186,7 @@ def alpha_chunk(
                 stale = True
                 out.evaluations[2] += 1
                 if not _refresh(p, q, v, a, acc, vd, residual, e1 + rad, t1, command, w, coefficients, h, held, lu):
-                    return LoopStatus.CORRECTOR_FAILED, n1
+                    return LoopStatus.NOT_FINITE, n1  # M* not positive definite at a perturbed iterate
                 count += nv
                 if not lu_factor(lu, pivots):
                     return LoopStatus.CORRECTOR_FAILED, n1
