@@ -98,12 +98,16 @@ def test_the_work_per_sample_does_not_grow_with_the_record(monkeypatch) -> None:
 
     block = 2**22 // 24  # the loop's blocks on the default scene (24 hydrodynamic DOFs)
     lengths = []
+
     for periods in (100, 1000, 10_000):
         waves = default_sea(periods)
         sums = BlockSum.on_grid(np.ones((2, waves.omega.size)) * waves.amplitude, waves.omega, TAU, block)
         assert sums is not None
         assert block <= sums.block and sums.length <= 1.25 * sums.block  # the block's FFT: its length
         monkeypatch.setattr(np.fft, "fft", counted)
+        calls.clear()
+        sums(0, sums.block)
+        assert calls == [(sums.length,), (2, sums.length)]  # the chirp's transform (made on first use) and the rows'
         for n0 in (0, 10**6):
             calls.clear()
             sums(n0, sums.block)
@@ -111,3 +115,23 @@ def test_the_work_per_sample_does_not_grow_with_the_record(monkeypatch) -> None:
         monkeypatch.setattr(np.fft, "fft", fft)
         lengths.append(sums.length / sums.block)
     assert max(lengths) <= 1.25 * min(lengths)
+
+
+def test_a_call_for_fewer_samples_than_a_block_transforms_a_length_fitted_to_them() -> None:
+    """The default block (2^22 values over the rows) is far longer than a short record: a call for m samples
+    transforms the smallest fast length holding m + W - 1 (a 40-period regular run's window: 4,961 samples, not
+    some 700,000), and its values are the direct sum's; a call for more samples than a block keeps the block."""
+    waves = default_sea(100)
+    rng = np.random.default_rng(3)
+    coefficients = waves.amplitude[None, :] * (rng.normal(size=(6, waves.omega.size)) + 1j)
+    sums = BlockSum.on_grid(coefficients, waves.omega, TAU)
+    assert sums is not None and sums.block > 100_000
+    width = sums.band.size
+    scale = np.abs(coefficients).sum(axis=1).max()
+    for n0, m in [(0, 4961), (sums.period - 40, 80), (10**6 + 3, 1)]:
+        assert sums.fft_length(m) == fast_length(m + width - 1) < sums.length
+        n = n0 + np.arange(m)
+        np.testing.assert_allclose(sums(n0, m), direct_sum(coefficients, waves.omega, n), rtol=0, atol=1e-12 * scale)
+        np.testing.assert_allclose(sums.real(n0, m), direct_sum(coefficients, waves.omega, n).real.T, rtol=0,
+                                   atol=1e-12 * scale)  # fmt: skip
+    assert sums.fft_length(sums.block) == sums.fft_length(3 * sums.block) == sums.length

@@ -45,9 +45,7 @@ def window_components(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarr
     time = np.arange(start, controlled.n_steps + 1) * controlled.dt
     n = time.size
     omega = 2 * np.pi * np.arange(n // 2 + 1) / (n * controlled.dt)
-    # one block as long as the window (the default block, 2^22 values, would make a short window's transforms
-    # hundreds of times longer than it), at a cost that does not grow with the components
-    sampled = exc.sampled(controlled.dt, n)
+    sampled = exc.sampled(controlled.dt)  # by blocks, at a cost that does not grow with the components
     force = exc.force(time) if sampled is None else sampled(start, n).T
     amplitude = 2 * np.fft.rfft(force, axis=1) / n * np.exp(-1j * omega * time[0])[None, :]
     # the band's ends widened by a small share of the window's frequency step: a window of whole periods of a

@@ -10,9 +10,10 @@ n = n0 + j, j = 0 ... M - 1, with u = m_k - m0 in [0, W) counted from the lowest
 
 and with u j = (u^2 + j^2 - (j - u)^2) / 2 (Bluestein's chirp-z transform) the inner sum is exp(i pi j^2 / P)
 times the convolution of c_u exp(i pi u^2 / P) with exp(-i pi v^2 / P): two FFTs of length L >= M + W - 1 per row
-and block (the chirp's transform is made once) and W products to move the components to the block's start. Every
-phase is reduced modulo 2 P in integers, so its round-off does not grow with the time or the harmonic number: the
-values equal the direct sum of the components to the round-off of the FFTs.
+and block (the chirp's transform is made once per FFT length; a call for fewer samples than a block transforms a
+length fitted to them) and W products to move the components to the block's start. Every phase is reduced modulo
+2 P in integers, so its round-off does not grow with the time or the harmonic number: the values equal the direct
+sum of the components to the round-off of the FFTs.
 """
 
 from __future__ import annotations
@@ -94,7 +95,8 @@ class BlockSum:
         P, the period [samples].
     block : int or None
         Samples per block M (default: BLOCK_VALUES / n_rows, at least the band of harmonics W); a call for more
-        samples is made of several blocks.
+        samples is made of several blocks, a call for fewer of one block just long enough for them (its FFT
+        length from the call's samples, not from M).
 
     Attributes
     ----------
@@ -121,16 +123,31 @@ class BlockSum:
         np.add.at(self.spectrum.T, u, coefficients.T)
         if block is None:
             block = max(width, BLOCK_VALUES // max(1, self.rows))
-        self.length = fast_length(block + width - 1)
-        self.block = self.length - width + 1  # (the FFT length's slack lengthens the block)
         self.band = np.arange(width, dtype=np.int64)
         self.chirp_in = _phase(self.band * self.band, self.period)  # exp(i pi u^2 / P)
-        v = np.arange(-(width - 1), self.block, dtype=np.int64)
-        kernel = np.zeros(self.length, dtype=complex)
-        kernel[np.mod(v, self.length)] = _phase(-(v * v), self.period)  # exp(-i pi v^2 / P), circular
-        self.kernel_fft = np.fft.fft(kernel)
-        j = np.arange(self.block, dtype=np.int64)
-        self.chirp_out = _phase(j * j, self.period)  # exp(i pi j^2 / P)
+        self._plans: dict[int, tuple[int, np.ndarray, np.ndarray]] = {}
+        self.length = fast_length(block + width - 1)
+        self.block = self.length - width + 1  # (the FFT length's slack lengthens the block)
+
+    def _plan(self, length: int) -> tuple[int, np.ndarray, np.ndarray]:
+        """For the FFT length ``length`` (>= W): the block it transforms (``length`` - W + 1 samples), the
+        transform of the chirp exp(-i pi v^2 / P) on it (circular) and exp(i pi j^2 / P) on the block; made once
+        per length, on first use."""
+        if length not in self._plans:
+            width = self.band.size
+            block = length - width + 1
+            v = np.arange(-(width - 1), block, dtype=np.int64)
+            kernel = np.zeros(length, dtype=complex)
+            kernel[np.mod(v, length)] = _phase(-(v * v), self.period)
+            j = np.arange(block, dtype=np.int64)
+            self._plans[length] = (block, np.fft.fft(kernel), _phase(j * j, self.period))
+        return self._plans[length]
+
+    def fft_length(self, m: int) -> int:
+        """The FFT length a call for ``m`` samples transforms: :attr:`length`, or for fewer samples than a block
+        the smallest fast length that holds them."""
+        width = self.band.size
+        return self.length if m >= self.block else min(self.length, fast_length(max(1, m) + width - 1))
 
     @classmethod
     def on_grid(
@@ -163,22 +180,24 @@ class BlockSum:
         if m < 0:
             raise ValueError(f"the number of samples must be >= 0; got {m!r}")
         width = self.band.size
-        group = max(1, min(self.rows, WORK_VALUES // self.length))
-        work = np.zeros((group, self.length), dtype=complex)
-        for start in range(0, m, self.block):
-            count = min(self.block, m - start)
+        length = self.fft_length(m)
+        block, kernel_fft, chirp_out = self._plan(length)
+        group = max(1, min(self.rows, WORK_VALUES // length))
+        work = np.zeros((group, length), dtype=complex)
+        for start in range(0, m, block):
+            count = min(block, m - start)
             n = int(n0) + start
             shift = _phase(2 * self.band * n, self.period) * self.chirp_in  # exp(2 pi i u n / P) exp(i pi u^2 / P)
             j = np.arange(count, dtype=np.int64)
             # exp(2 pi i m0 (n + j) / P) exp(i pi j^2 / P)
-            after = _phase(2 * self.lowest * np.mod(n + j, self.period), self.period) * self.chirp_out[:count]
+            after = _phase(2 * self.lowest * np.mod(n + j, self.period), self.period) * chirp_out[:count]
             for r0 in range(0, self.rows, group):
                 rows = slice(r0, min(self.rows, r0 + group))
                 k = rows.stop - r0
                 np.multiply(self.spectrum[rows], shift, out=work[:k, :width])
                 work[:k, width:] = 0.0
                 spectrum = np.fft.fft(work[:k], axis=1)
-                spectrum *= self.kernel_fft
+                spectrum *= kernel_fft
                 values = np.fft.ifft(spectrum, axis=1)[:, :count]
                 values *= after
                 yield rows, slice(start, start + count), values
