@@ -177,7 +177,10 @@ def alpha_chunk(
                 return LoopStatus.CORRECTOR_FAILED, n1
             # the Newton step, not the residual, is tested: the stiff coordinates' round-off in the accelerations
             # (their static loads cancel) is far above the floor, and their step J r far below it
-            _newton_step(mass, lu, pivots, residual, increment, step)
+            if refreshed:  # lu holds the derivative from differences: the step is its inverse times the residual
+                lu_solve(lu, pivots, residual, step)
+            else:
+                _newton_step(mass, lu, pivots, residual, increment, step)
             change = _weighted_max(step, weight)
             if iteration >= REFRESH_AFTER and change > 0.5 * previous and not refreshed:
                 # slow or no contraction (the equations' derivative far from the matrix's model): the matrix made
@@ -190,10 +193,7 @@ def alpha_chunk(
                 count += nv
                 if not lu_factor(lu, pivots):
                     return LoopStatus.CORRECTOR_FAILED, n1
-                mass[:, :] = 0.0  # the step is the derivative's inverse times the residual
-                for c in range(nv):
-                    mass[c, c] = 1.0
-                _newton_step(mass, lu, pivots, residual, increment, step)
+                lu_solve(lu, pivots, residual, step)
                 change = _weighted_max(step, weight)
             previous = change
             if not np.isfinite(change):
