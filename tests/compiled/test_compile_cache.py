@@ -97,3 +97,24 @@ def test_the_files_of_a_spec_include_the_database_it_names(tmp_path: Path):
     catalogued = spec.with_name("catalogued.toml")
     catalogued.write_text((DEVICE_DIR / "m4-111.toml").read_text())
     assert spec_files(catalogued) == (catalogued.resolve(),)  # a catalogue database name: shipped with wecss
+
+
+def test_a_new_step_discretises_the_cached_fit_and_gives_the_arrays_of_a_fresh_compile():
+    """A sweep over periods changes dt = Tp/200 with each period: the state-space fit is made (or read from the disk
+    cache) once per process and only discretised again for the new step."""
+    base = _scene()
+    state_space = dataclasses.replace(base.radiation, method="state_space")
+    first = dataclasses.replace(base, radiation=state_space)
+    second = dataclasses.replace(first, sea=dataclasses.replace(first.sea, period=1.4, seed=4))
+    clear_compile_cache()
+    a = compile_scene(first)
+    cached = _compiled_arrays(second)
+    b = compile_scene(second)
+    assert b.dt != a.dt
+    assert b.radiation_fit is a.radiation_fit  # the fit from memory, not made or read again
+    clear_compile_cache()
+    fresh = _compiled_arrays(second)
+    assert cached.keys() == fresh.keys()
+    assert {"radiation.decay", "radiation.hold_real", "plant.active_mass"} <= fresh.keys()
+    for key in fresh:
+        np.testing.assert_array_equal(cached[key], fresh[key], err_msg=key)

@@ -309,11 +309,13 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
 
 
 def make_radiation(
-    radiation: Radiation, coupling: HydroCoupling, dt: float
+    radiation: Radiation, coupling: HydroCoupling, dt: float, fit: RadiationFit | None = None
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
     """The radiation memory arrays of the ``radiation`` settings for the step ``dt`` [s] on the database of
-    ``coupling``, and the state-space fit they were made from (None for the other methods)."""
-    from ..radiation import fit_radiation, impulse_response
+    ``coupling``, and the state-space fit they were made from (None for the other methods). ``fit``: the
+    state-space fit of these settings when the caller has it (:func:`make_fit`; it does not depend on the step),
+    else it is made (or read from the disk cache) here."""
+    from ..radiation import impulse_response
 
     kind = RadiationKind.from_method(radiation.method)
     n_h = len(coupling.hydro.dofs)
@@ -324,9 +326,17 @@ def make_radiation(
             impulse_response(coupling.hydro), dt, coupling_threshold=radiation.coupling_threshold
         )
         return arrays, summary, None
-    settings, band = fit_request(radiation, coupling.hydro)
-    fit = fit_radiation(coupling.hydro, settings, cache=True, band=band)
+    fit = fit if fit is not None else make_fit(radiation, coupling)
     return (*from_state_space(fit.model, dt), fit)
+
+
+def make_fit(radiation: Radiation, coupling: HydroCoupling) -> RadiationFit:
+    """The state-space fit of the ``radiation`` settings on the database of ``coupling`` (from the disk cache of
+    fits when it holds it)."""
+    from ..radiation import fit_radiation
+
+    settings, band = fit_request(radiation, coupling.hydro)
+    return fit_radiation(coupling.hydro, settings, cache=True, band=band)
 
 
 MIN_STEPS_PER_PERIOD: int = 4
@@ -432,17 +442,30 @@ def _device_parts(
 
 
 @functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
+def _radiation_fit(name: str, hydro: str | None, sources: tuple[FileStamp, ...], radiation: Radiation) -> RadiationFit:
+    """The state-space fit of a device's radiation memory, for every step (cached, keyed as :func:`_device_parts`):
+    a sweep over periods changes the step with the period (dt = Tp/200) and discretises this one fit again, without
+    reading it from the disk cache and decomposing it into modes again."""
+    coupling = _device_parts(name, hydro, sources, radiation.body_to_body)[1]
+    return make_fit(radiation, coupling)
+
+
+@functools.lru_cache(maxsize=PARTS_CACHE_SIZE)
 def _radiation_parts(
     name: str, hydro: str | None, sources: tuple[FileStamp, ...], radiation: Radiation, dt: float
 ) -> tuple[RadiationArrays, RadiationSummary, RadiationFit | None]:
     """The radiation memory of a device for a step (cached, keyed as :func:`_device_parts`)."""
     coupling = _device_parts(name, hydro, sources, radiation.body_to_body)[1]
-    return make_radiation(radiation, coupling, dt)
+    fit = None
+    if RadiationKind.from_method(radiation.method) == RadiationKind.STATE_SPACE:
+        fit = _radiation_fit(name, hydro, sources, radiation)
+    return make_radiation(radiation, coupling, dt, fit)
 
 
 def clear_compile_cache() -> None:
-    """Forget the devices and radiation memories :func:`compile_plant` keeps in memory."""
+    """Forget the devices, radiation fits and radiation memories :func:`compile_plant` keeps in memory."""
     _device_parts.cache_clear()
+    _radiation_fit.cache_clear()
     _radiation_parts.cache_clear()
 
 
