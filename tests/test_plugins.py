@@ -10,6 +10,7 @@ import sys
 import pytest
 
 from wecss import plugins
+from tests.toy_plugins import write_distribution
 from wecss.control import available, create, registered_name
 
 TOY = '''
@@ -23,14 +24,9 @@ class ToyDamping(LinearDamping):
 
 @pytest.fixture
 def toy_plugin(tmp_path):
-    """A folder holding a distribution ``toy-plugin`` that registers ``toy-damping`` under ``wecss.controllers``
-    (not yet on the path)."""
-    (tmp_path / "toy_plugin_module.py").write_text(TOY)
-    info = tmp_path / "toy_plugin-1.0.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: toy-plugin\nVersion: 1.0\n")
-    (info / "entry_points.txt").write_text("[wecss.controllers]\ntoy-damping = toy_plugin_module:ToyDamping\n")
-    yield tmp_path
+    """A folder holding a distribution that registers ``toy-damping`` under ``wecss.controllers`` (not yet on the
+    path)."""
+    yield write_distribution(tmp_path, "wecss.controllers", "toy-damping", "toy_plugin_module", "ToyDamping", TOY)
     sys.modules.pop("toy_plugin_module", None)
 
 
