@@ -39,7 +39,9 @@ def _in_fresh_process(code: str, cwd: Path) -> dict[str, object]:
 
 def _command(*args: str) -> str:
     """The ``wecss`` command as the console script calls it: ``main()`` on the process's own command line."""
-    return f"import sys\nfrom wecss.cli import main\nsys.argv = ['wecss', *{list(args)!r}]\nreport = {{'status': main()}}"
+    return (
+        f"import sys\nfrom wecss.cli import main\nsys.argv = ['wecss', *{list(args)!r}]\nreport = {{'status': main()}}"
+    )
 
 
 def test_wecss_run_imports_no_dask(tmp_path):
@@ -79,6 +81,18 @@ def test_an_import_of_dask_kept_out_fails_and_says_why(tmp_path):
 
 
 @needs_dask
+def test_after_xarray_was_imported_dask_is_not_kept_out(tmp_path):
+    """xarray decides whether dask is installed when it is imported: hiding it afterwards would break xarray."""
+    (tmp_path / "s.toml").write_text(SCENE)
+    code = (
+        "import xarray\nfrom wecss.dask_free import keep_dask_out\nkept = keep_dask_out()\n"
+        f"{_command('run', 's.toml', '-o', 'r.nc', '-q')}\nreport['kept'] = kept"
+    )
+    out = _in_fresh_process(code, tmp_path)
+    assert out["kept"] is False and out["status"] == 0 and (tmp_path / "r.nc").is_file()
+
+
+@needs_dask
 def test_dask_imported_already_is_not_kept_out(tmp_path):
     code = (
         "import dask\nfrom wecss.dask_free import keep_dask_out\nkept = keep_dask_out()\n"
@@ -103,7 +117,9 @@ class NeedsDask(LinearDamping):
 def test_a_run_whose_controller_imports_dask_says_to_allow_it(tmp_path):
     """A plugin that imports dask under ``wecss run`` is an error that says to give ``--allow-dask``; with it
     the run goes."""
-    plugin = write_distribution(tmp_path, "wecss.controllers", "needs-dask", "needs_dask_plugin", "NeedsDask", NEEDS_DASK)
+    plugin = write_distribution(
+        tmp_path, "wecss.controllers", "needs-dask", "needs_dask_plugin", "NeedsDask", NEEDS_DASK
+    )
     (tmp_path / "s.toml").write_text(SCENE + '[controller]\nname = "needs-dask"\n')
     env = {**os.environ, "PYTHONPATH": f"{ROOT}{os.pathsep}{plugin}", "WECSS_JIT": "0"}
     command = [sys.executable, "-m", "wecss.cli", "run", "s.toml", "-o", "r.nc", "-q"]

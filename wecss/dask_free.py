@@ -19,11 +19,13 @@ _KEPT_OUT: list[str] = []
 
 
 def keep_dask_out() -> bool:
-    """Make dask and distributed look not installed to this process, unless one of them is imported already (then
-    nothing changes: its users would break). Returns whether they are kept out. Call it before the process uses
-    xarray; it cannot be undone (xarray keeps what it found)."""
-    if any(name in sys.modules for name in DASK_MODULES):
-        return bool(_KEPT_OUT)
+    """Make dask and distributed look not installed to this process, unless one of them or xarray is imported
+    already (then nothing changes: dask's users would break, and xarray decides whether dask is there when it is
+    imported). Returns whether they are kept out. It cannot be undone (xarray keeps what it found)."""
+    if _KEPT_OUT:
+        return True
+    if any(name in sys.modules for name in (*DASK_MODULES, "xarray")):
+        return False
     for name in DASK_MODULES:
         sys.modules[name] = None  # type: ignore[assignment]
         _KEPT_OUT.append(name)
