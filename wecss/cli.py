@@ -34,7 +34,8 @@ from pathlib import Path
 from typing import Any
 
 from . import __version__
-from .dask_free import keep_dask_out, refusal_hint
+from . import command_process
+from .dask_free import refusal_hint
 from .files import refuse_overwrite
 from .interrupts import Terminated, sigterm_raises
 
@@ -68,7 +69,7 @@ def _info(target: str | None) -> int:
         ds = open_result(path)
         print(ds)
         print()
-        print(_partial_summary(ds) if "run_status" in ds.attrs else _summary(ds))
+        print(_partial_summary(ds) if "run_status" in ds.attrs else run_summary(ds))
         return 0
     if path.suffix == ".toml" or target in devices.available():
         device = devices.Device.from_spec(path) if path.suffix == ".toml" else devices.load(target)
@@ -180,7 +181,7 @@ def _partial_summary(ds: Any) -> str:
     return "\n".join(lines)
 
 
-def _summary(ds: Any) -> str:
+def run_summary(ds: Any) -> str:
     """The table printed after a run: mean power per PTO, CWR, RMS hinge angle, timings."""
     import numpy as np
 
@@ -276,7 +277,7 @@ def _run(
 
             fig = plot_summary(ds, picture)
             plt.close(fig)
-        print(_summary(ds))
+        print(run_summary(ds))
     print(f"wrote {out}" + (f" and {picture}" if plotted else ""))
     return 0
 
@@ -487,13 +488,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     files being written are cleaned up, a streamed result's partial file says it stopped).
 
     Without ``argv`` (the process's own command line: the ``wecss`` command, ``python -m wecss.cli``) the process
-    is the command's: every command but ``sweep`` (and ``run --allow-dask``) keeps dask out of it
-    (``wecss.dask_free``). With ``argv`` (a call from Python) the calling process is left as it is."""
+    is the command's (``wecss.command_process``: dask kept out of every command but ``sweep`` and ``run
+    --allow-dask``, the garbage collector tuned for a short process). With ``argv`` (a call from Python) the
+    calling process is left as it is."""
     args = build_parser().parse_args(argv)
-    if argv is None and args.command != "sweep" and not getattr(args, "allow_dask", False):
-        keep_dask_out()
-    with sigterm_raises():
-        return _command(args)
+    own = argv is None
+    if own:
+        command_process.enter(args.command, allow_dask=getattr(args, "allow_dask", False))
+    try:
+        with sigterm_raises():
+            return _command(args)
+    finally:
+        if own:
+            command_process.leave()
 
 
 def _command(args: argparse.Namespace) -> int:

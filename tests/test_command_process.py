@@ -1,6 +1,8 @@
-"""The ``wecss`` commands but ``sweep`` keep dask out of their process (``wecss.dask_free``): xarray would import
-dask.array for its first variable and distributed for its first netCDF write (about 0.35 s). Each check runs in a
-fresh process: keeping dask out cannot be undone."""
+"""What the ``wecss`` command does to its own process (``wecss.command_process``): the commands but ``sweep`` keep
+dask out of it (``wecss.dask_free``: xarray would import dask.array for its first variable and distributed for its
+first netCDF write, about 0.35 s), and the garbage collector is tuned for a short process. A call of ``main([...])``
+from Python leaves the caller's process alone. Each check runs in a fresh process: keeping dask out cannot be
+undone."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from tests.toy_plugins import write_distribution
+from wecss.command_process import GC_THRESHOLDS
 
 ROOT = Path(__file__).resolve().parent.parent
 needs_dask = pytest.mark.skipif(importlib.util.find_spec("dask") is None, reason="the dask extra is not installed")
@@ -28,9 +31,10 @@ def _in_fresh_process(code: str, cwd: Path) -> dict[str, object]:
     """Run ``code`` in a new interpreter (pure-Python kernels: no numba compile); return what it prints last as
     JSON, with ``loaded``: the dask and distributed modules it imported."""
     probe = (
-        f"{code}\nimport json, sys\nloaded = sorted(m for m, v in sys.modules.items() "
+        f"{code}\nimport gc, json, sys\nloaded = sorted(m for m, v in sys.modules.items() "
         "if v is not None and m.split('.')[0] in ('dask', 'distributed'))\n"
-        "print(json.dumps({'loaded': loaded, **globals().get('report', {})}))"
+        "gc_state = {'thresholds': list(gc.get_threshold()), 'frozen': gc.get_freeze_count()}\n"
+        "print(json.dumps({'loaded': loaded, **gc_state, **globals().get('report', {})}))"
     )
     env = {**os.environ, "PYTHONPATH": str(ROOT), "WECSS_JIT": "0"}
     out = subprocess.run([sys.executable, "-c", probe], env=env, cwd=cwd, check=True, capture_output=True, text=True)
@@ -44,11 +48,17 @@ def _command(*args: str) -> str:
     )
 
 
-def test_wecss_run_imports_no_dask(tmp_path):
+def test_wecss_run_imports_no_dask_and_tunes_the_garbage_collector(tmp_path):
     (tmp_path / "s.toml").write_text(SCENE)
     out = _in_fresh_process(_command("run", "s.toml", "-o", "r.nc", "-q"), tmp_path)
     assert out["status"] == 0 and (tmp_path / "r.nc").is_file() and (tmp_path / "r.png").is_file()
     assert out["loaded"] == []
+    assert out["thresholds"] == list(GC_THRESHOLDS) and out["frozen"] > 0  # frozen for the exit
+
+
+def test_a_failed_command_leaves_its_process_frozen_for_the_exit(tmp_path):
+    out = _in_fresh_process(_command("run", "missing.toml", "-q"), tmp_path)
+    assert out["status"] == 2 and out["frozen"] > 0
 
 
 @needs_dask
@@ -62,9 +72,13 @@ def test_allow_dask_lets_xarray_import_it(tmp_path):
 def test_main_called_with_arguments_leaves_the_calling_process_as_it_is(tmp_path):
     """From Python (``main([...])``) the process is the caller's: it may use dask after the command."""
     (tmp_path / "s.toml").write_text(SCENE)
-    code = "from wecss.cli import main\nreport = {'status': main(['run', 's.toml', '-o', 'r.nc', '-q'])}"
+    code = (
+        "import gc\nthresholds = gc.get_threshold()\nfrom wecss.cli import main\n"
+        "report = {'status': main(['run', 's.toml', '-o', 'r.nc', '-q']), 'before': list(thresholds)}"
+    )
     out = _in_fresh_process(code, tmp_path)
     assert out["status"] == 0 and "dask.array" in out["loaded"]
+    assert out["thresholds"] == out["before"] and out["frozen"] == 0
 
 
 @needs_dask
