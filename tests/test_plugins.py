@@ -9,8 +9,8 @@ import sys
 
 import pytest
 
-from wecss import plugins
 from tests.toy_plugins import write_distribution
+from wecss import plugins
 from wecss.control import available, create, registered_name
 
 TOY = '''

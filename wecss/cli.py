@@ -33,8 +33,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from . import __version__
-from . import command_process
+from . import __version__, command_process
 from .dask_free import refusal_hint
 from .files import refuse_overwrite
 from .interrupts import Terminated, sigterm_raises
