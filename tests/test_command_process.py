@@ -143,3 +143,13 @@ def test_a_run_whose_controller_imports_dask_says_to_allow_it(tmp_path):
     allowed = subprocess.run([*command, "--allow-dask"], env=env, cwd=tmp_path, capture_output=True, text=True)
     assert allowed.returncode == 0, allowed.stderr
     assert (tmp_path / "r.nc").is_file()
+
+
+def test_a_sweep_process_is_left_as_python_sets_it_up(tmp_path):
+    """``wecss sweep`` may run for hours and use dask: neither dask nor the garbage collector is changed."""
+    code = (
+        "import gc\nfrom wecss import command_process, dask_free\nbefore = list(gc.get_threshold())\n"
+        "command_process.enter('sweep')\nreport = {'before': before, 'kept': dask_free.dask_kept_out()}"
+    )
+    out = _in_fresh_process(code, tmp_path)
+    assert out["thresholds"] == out["before"] and out["kept"] is False
