@@ -8,6 +8,7 @@ periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic data
 JONSWAP sea) and writes the result and a PNG summary plot; ``--set sea.period=1.4`` overrides a scene value (dotted
 paths, validated by the scene). ``wecss run --from RESULT.nc`` runs a result's recorded scene and controller again
 after checking its input files' SHA-256 (``wecss.sim.scene_from_result``). ``wecss plot RESULT.nc`` plots a result.
+The commands but ``sweep`` keep dask out of their process (``wecss.dask_free``; ``run --allow-dask`` lets it in).
 
 ``wecss modes DEVICE`` prints the natural modes of a device with its flexible bodies, in air and in water
 (``wecss.devices.structural_modes``): frequency, damping ratio and the in-plane / out-of-plane / torsion shares of
@@ -32,7 +33,8 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from . import __version__
+from . import __version__, command_process
+from .dask_free import refusal_hint
 from .files import refuse_overwrite
 from .interrupts import Terminated, sigterm_raises
 
@@ -66,7 +68,7 @@ def _info(target: str | None) -> int:
         ds = open_result(path)
         print(ds)
         print()
-        print(_partial_summary(ds) if "run_status" in ds.attrs else _summary(ds))
+        print(_partial_summary(ds) if "run_status" in ds.attrs else run_summary(ds))
         return 0
     if path.suffix == ".toml" or target in devices.available():
         device = devices.Device.from_spec(path) if path.suffix == ".toml" else devices.load(target)
@@ -178,7 +180,7 @@ def _partial_summary(ds: Any) -> str:
     return "\n".join(lines)
 
 
-def _summary(ds: Any) -> str:
+def run_summary(ds: Any) -> str:
     """The table printed after a run: mean power per PTO, CWR, RMS hinge angle, timings."""
     import numpy as np
 
@@ -232,7 +234,6 @@ def _run(
     from .netcdf import partial_path
     from .results import plot_summary
     from .sim import Scene, default_scene_path, scene_from_result, simulate
-    from .sweep import apply_overrides
 
     if from_result is not None:
         if scene_path is not None:
@@ -241,12 +242,12 @@ def _run(
         recorded, found = scene_from_result(path)  # inputs checked against their SHA-256
         for line in found:
             print(f"wecss: {line}", file=sys.stderr)
-        scene = apply_overrides(recorded, overrides)
+        scene = _with_overrides(recorded, overrides)
         inputs = {"result file read by --from": path, **scene_inputs(scene)}
         out = Path(output) if output else Path(f"{path.stem}-rerun.nc")
     else:
         path = Path(scene_path) if scene_path else default_scene_path()
-        scene = apply_overrides(Scene.from_toml(path), overrides)
+        scene = _with_overrides(Scene.from_toml(path), overrides)
         inputs = {"scene file": path, **scene_inputs(scene)}
         out = Path(output) if output else Path(f"{'wecss-default' if scene_path is None else path.stem}.nc")
     picture = Path(png) if png else out.with_suffix(".png")
@@ -275,9 +276,18 @@ def _run(
 
             fig = plot_summary(ds, picture)
             plt.close(fig)
-        print(_summary(ds))
+        print(run_summary(ds))
     print(f"wrote {out}" + (f" and {picture}" if plotted else ""))
     return 0
+
+
+def _with_overrides(scene: Any, overrides: Sequence[str]) -> Any:
+    """``scene`` with the ``--set`` assignments applied (``wecss.sweep.apply_overrides``; imported only then)."""
+    if not overrides:
+        return scene
+    from .sweep import apply_overrides
+
+    return apply_overrides(scene, overrides)
 
 
 def _sweep(args: argparse.Namespace) -> int:
@@ -416,6 +426,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--png", help="summary plot (.png); default: next to the result")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    run.add_argument(
+        "--allow-dask",
+        action="store_true",
+        help="let dask be imported in this run (a controller or runner plugin that uses it); without it the "
+        "command keeps dask out of its process, as xarray would import it for nothing (about 0.35 s)",
+    )
     _storage_options(run)
     run.add_argument(
         "--set",
@@ -468,10 +484,22 @@ def _silence_stdout() -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``wecss`` command; returns the exit status (130 after Ctrl-C, 143 after SIGTERM: the
-    files being written are cleaned up, a streamed result's partial file says it stopped)."""
+    files being written are cleaned up, a streamed result's partial file says it stopped).
+
+    Without ``argv`` (the process's own command line: the ``wecss`` command, ``python -m wecss.cli``) the process
+    is the command's (``wecss.command_process``: dask kept out of every command but ``sweep`` and ``run
+    --allow-dask``, the garbage collector tuned for a short process). With ``argv`` (a call from Python) the
+    calling process is left as it is."""
     args = build_parser().parse_args(argv)
-    with sigterm_raises():
-        return _command(args)
+    own = argv is None
+    if own:
+        command_process.enter(args.command, allow_dask=getattr(args, "allow_dask", False))
+    try:
+        with sigterm_raises():
+            return _command(args)
+    finally:
+        if own:
+            command_process.leave()
 
 
 def _command(args: argparse.Namespace) -> int:
@@ -495,7 +523,11 @@ def _command(args: argparse.Namespace) -> int:
             return _plot(args.result, args.output)
         if args.command == "modes":
             return _structural_modes(args)
-    except (ValueError, FileNotFoundError, ImportError) as err:
+    except ImportError as err:
+        hint = refusal_hint(err)
+        print(f"wecss: error: {err}" + (f"; {hint}: give run --allow-dask" if hint else ""), file=sys.stderr)
+        return 2
+    except (ValueError, FileNotFoundError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader stopped early (wecss info | head): end quietly

@@ -26,6 +26,28 @@ def _legend_texts(ax) -> list[str]:  # type: ignore[no-untyped-def]
     return [] if legend is None else [t.get_text() for t in legend.get_texts()]
 
 
+def _everything_inside(fig) -> bool:  # type: ignore[no-untyped-def]
+    """Whether every artist of a drawn figure lies inside it (the margins are fixed: nothing is cut off)."""
+    drawn = fig.get_tightbbox(fig.canvas.get_renderer())  # [in]
+    width, height = fig.get_size_inches()
+    return bool(drawn.x0 >= 0 and drawn.y0 >= 0 and drawn.x1 <= width and drawn.y1 <= height)
+
+
+def test_the_saved_summary_is_drawn_once_with_everything_inside(run, tmp_path, monkeypatch):
+    """The PNG is the figure as it is (fixed margins, no tight bounding box measured by a second drawing)."""
+    from matplotlib.figure import Figure
+
+    draws = []
+    real = Figure.draw
+    monkeypatch.setattr(Figure, "draw", lambda self, renderer: draws.append(1) or real(self, renderer))
+    fig = plot_summary(run, tmp_path / "summary.png")
+    try:
+        assert len(draws) == 1
+        assert _everything_inside(fig)
+    finally:
+        plt.close(fig)
+
+
 def test_summary_plot_has_what_a_user_keeps(run, tmp_path):
     path = tmp_path / "summary.png"
     fig = plot_summary(run, path)
@@ -112,6 +134,8 @@ def test_rotary_and_linear_strokes_get_axes_of_their_own(tmp_path):
         labels = {ax.get_ylabel() for ax in fig.axes}
         assert {"PTO angle [deg]", "PTO stroke [mm]"} <= labels and len(fig.axes) == 6
         assert _legend_texts(fig.axes[1]) == ["pto_3", "strut"]
+        fig.savefig(tmp_path / "summary.png")
+        assert _everything_inside(fig)  # the right-hand axis's label too
     finally:
         plt.close(fig)
 

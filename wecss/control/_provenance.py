@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import inspect
 import json
-from importlib.metadata import entry_points
 from typing import Any
 
 import numpy as np
 
+from ..plugins import entry_points
 from ._protocol import Controller
 from ._registry import ENTRY_POINT_GROUP
 
@@ -22,11 +22,11 @@ def registered_name(controller: Controller) -> str | None:
     """The name under which the class of ``controller`` is registered (entry-point group ``wecss.controllers``),
     or None."""
     cls = type(controller)
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
+    for ep in entry_points(ENTRY_POINT_GROUP):
         module, _, attr = ep.value.partition(":")
         if module == cls.__module__ and attr == cls.__qualname__:
             return ep.name
-    for ep in entry_points(group=ENTRY_POINT_GROUP):  # registered under another module path (a re-export)
+    for ep in entry_points(ENTRY_POINT_GROUP):  # registered under another module path (a re-export)
         try:
             if ep.load() is cls:
                 return ep.name

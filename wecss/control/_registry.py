@@ -4,9 +4,9 @@ package and third-party packages register theirs (wecss itself never imports a p
 from __future__ import annotations
 
 import inspect
-from importlib.metadata import entry_points
 from typing import Any
 
+from ..plugins import entry_points
 from ._protocol import Controller
 
 ENTRY_POINT_GROUP = "wecss.controllers"
@@ -14,7 +14,7 @@ ENTRY_POINT_GROUP = "wecss.controllers"
 
 def available() -> list[str]:
     """Names registered under the ``wecss.controllers`` entry-point group."""
-    return sorted(ep.name for ep in entry_points(group=ENTRY_POINT_GROUP))
+    return sorted(ep.name for ep in entry_points(ENTRY_POINT_GROUP))
 
 
 def create(name: str, **parameters: Any) -> Controller:
@@ -27,7 +27,7 @@ def create(name: str, **parameters: Any) -> Controller:
     TypeError
         For parameters the controller does not take, or a registered class that is not a :class:`Controller`.
     """
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
+    for ep in entry_points(ENTRY_POINT_GROUP):
         if ep.name == name:
             cls = ep.load()
             try:

@@ -19,6 +19,16 @@ from ._plot import _pyplot, refuse_all_nan
 LINESTYLES = ("-", "--", "-.", ":")
 """Line styles cycled with the colours, so PTOs stay apart in print and for colour-blind readers."""
 
+PANELS_SIZE = (7.75, 7.5)
+"""Width and height of the grid of panels [in]."""
+
+MARGINS = {"left": 0.8, "right": 0.25, "bottom": 0.55, "top": 0.75}
+"""Space around the grid of panels [in]: tick labels and axis labels, the title in the top one. Fixed, so that the
+figure is drawn once when saved (a tight bounding box draws it twice to measure it)."""
+
+TWIN_AXIS_MARGIN = 0.5
+"""More space on the right [in] for the right-hand axis of the linear strokes (a device with both kinds of PTO)."""
+
 
 def scaled_unit(values: np.ndarray, unit: str) -> tuple[float, str]:
     """A factor and unit that keep the largest finite |value| of a quantity in ``unit`` ("m", "W", "rad") between
@@ -95,8 +105,23 @@ def plot_summary(ds: xr.Dataset, path: str | Path | None = None) -> Any:
     refuse_all_nan(ds, ("wave_elevation", "pto_angle", "pto_displacement", "pto_power", "mean_pto_power"))
     from matplotlib.gridspec import GridSpec
 
-    fig = plt.figure(figsize=(10, 9.5))
-    grid = GridSpec(4, 2, figure=fig, height_ratios=[1, 1, 1, 1.15], hspace=0.45, wspace=0.28, top=0.9)
+    twin = "pto_angle" in ds and "pto_displacement" in ds  # see _stroke_panel
+    margins = {**MARGINS, "right": MARGINS["right"] + (TWIN_AXIS_MARGIN if twin else 0.0)}
+    width = margins["left"] + PANELS_SIZE[0] + margins["right"]
+    height = margins["bottom"] + PANELS_SIZE[1] + margins["top"]
+    fig = plt.figure(figsize=(width, height))
+    grid = GridSpec(
+        4,
+        2,
+        figure=fig,
+        height_ratios=[1, 1, 1, 1.15],
+        hspace=0.45,
+        wspace=0.28,
+        left=margins["left"] / width,
+        right=1 - margins["right"] / width,
+        bottom=margins["bottom"] / height,
+        top=1 - margins["top"] / height,
+    )
     top = fig.add_subplot(grid[0, :])
     axes = [top, fig.add_subplot(grid[1, :], sharex=top), fig.add_subplot(grid[2, :], sharex=top)]
     t = ds.time.values
@@ -118,9 +143,9 @@ def plot_summary(ds: xr.Dataset, path: str | Path | None = None) -> Any:
     _spectrum_panel(fig.add_subplot(grid[3, 0]), ds, start)
     _bars_panel(fig.add_subplot(grid[3, 1]), means, styles, power_unit)
     # (a device with rotary and linear PTOs has one more axis: the linear strokes', to the right of the angles')
-    fig.suptitle(sea_state_title(ds), fontsize=10, y=0.97)
+    fig.suptitle(sea_state_title(ds), fontsize=10, y=1 - 0.1 / height)
     if path is not None:
-        fig.savefig(path, dpi=110, bbox_inches="tight")
+        fig.savefig(path, dpi=110)
     return fig
 
 

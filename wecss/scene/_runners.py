@@ -15,10 +15,10 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from importlib.metadata import entry_points
 from typing import Any
 
 from ..outputs import GROUPS
+from ..plugins import entry_points
 from ._errors import SceneError
 
 ENTRY_POINT_GROUP = "wecss.runners"
@@ -217,7 +217,7 @@ def _load_entry_points() -> None:
     if _LOADED:
         return
     _LOADED.append(True)
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
+    for ep in entry_points(ENTRY_POINT_GROUP):
         if ep.name not in _REGISTERED:
             register_runner(ep.load(), name=ep.name)
 

@@ -103,9 +103,10 @@ def _add(qs: Quantities, rows: tuple[Variable, ...], data: dict[str, Any], coord
             data[f"{v.name}_equilibrium"] = (v.dims[1:], equilibrium[0])
         if amplitudes is not None:
             data[f"{v.name}_amplitude"] = (("omega", *v.dims[1:]), amplitudes)
-    used = {dim for dims, _ in data.values() for dim in dims}
-    for dim in used - set(coords):
-        coords[dim] = _coordinate(qs, dim)
+    used = dict.fromkeys(dim for dims, _ in data.values() for dim in dims)  # in the order of first use
+    for dim in used:
+        if dim not in coords:  # (a set here gave the file's coordinates an order that changed from run to run)
+            coords[dim] = _coordinate(qs, dim)
     if "pto" in used:
         coords["pto_kind"] = ("pto", list(qs.controlled.pto_kinds))
 

@@ -8,7 +8,6 @@ import dataclasses
 import json
 import os
 from collections.abc import Mapping
-from importlib.metadata import entry_points
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +15,7 @@ import numpy as np
 from ..compiled import SHIPPED_DATA_DIR
 from ..control import ENTRY_POINT_GROUP, UNREGISTERED, ControlledScene, controller_attrs, create, registered_name
 from ..netcdf import global_attributes
+from ..plugins import entry_points
 from ..provenance import INPUTS_ATTR, find_inputs
 from ..scene import ControllerChoice, Scene
 from ._attrs import FIT_ATTR, fit_digest
@@ -123,7 +123,7 @@ def gains_difference(attrs: Mapping[str, object], controlled: ControlledScene) -
 
 def _same_class(name: str, recorded: str) -> None:
     """Refuse a controller name that now makes another class than the one that ran."""
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
+    for ep in entry_points(ENTRY_POINT_GROUP):
         if ep.name == name:
             module, _, attr = ep.value.partition(":")
             now = f"{module}.{attr}"
