@@ -47,15 +47,20 @@ def window_components(controlled: ControlledScene) -> tuple[np.ndarray, np.ndarr
     omega = 2 * np.pi * np.arange(n // 2 + 1) / (n * controlled.dt)
     sampled = exc.sampled(controlled.dt)  # by blocks, at a cost that does not grow with the components
     force = exc.force(time) if sampled is None else sampled(start, n).T
-    amplitude = 2 * np.fft.rfft(force, axis=1) / n * np.exp(-1j * omega * time[0])[None, :]
     # the band's ends widened by a small share of the window's frequency step: a window of whole periods of a
     # regular wave has its frequency on the window's grid only to rounding
     edge = BAND_EDGE * 2 * np.pi / (n * controlled.dt)
-    energy = np.sum(np.abs(amplitude) ** 2, axis=0)
     in_band = (omega >= exc.omega.min() - edge) & (omega <= exc.omega.max() + edge)
-    keep = (omega > 0) & (np.arange(omega.size) < (n + 1) // 2) & in_band
-    keep &= energy >= NEGLIGIBLE_SHARE * (energy[keep].max() if keep.any() else 0.0)
-    return omega[keep], amplitude[:, keep]
+    band = (omega > 0) & (np.arange(omega.size) < (n + 1) // 2) & in_band
+    # one row at a time, the band's components only: a long run's window would otherwise hold a few copies of the
+    # whole window's transform (0.5 GB of a 10,000-Tp run's peak memory)
+    phase = np.exp(-1j * omega[band] * time[0])
+    amplitude = np.empty((force.shape[0], int(np.count_nonzero(band))), dtype=complex)
+    for row in range(force.shape[0]):
+        amplitude[row] = 2 * np.fft.rfft(force[row])[band] / n * phase
+    energy = np.sum(np.abs(amplitude) ** 2, axis=0)
+    keep = energy >= NEGLIGIBLE_SHARE * (energy.max() if energy.size else 0.0)
+    return omega[band][keep], amplitude[:, keep]
 
 
 def window_bound(controlled: ControlledScene) -> PowerBound:
