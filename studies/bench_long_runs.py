@@ -174,8 +174,10 @@ before issue 29, sum its components per chunk of 2000 steps (the last column: ab
 in blocks of about 2**22 values, one chirp-z transform each (`wecss.waves.BlockSum`): the excitation's column
 "now", whose cost per step does not depend on the run's length or its components (about 2 to 3 times the one-table
 FFT's, that is about 1 us per step more than a short run, some 7 % of a quiet machine's 11.6 us step) and whose
-memory is the block's (the peak RSS grows by the block between 100 and 1000 Tp and then only by the components'
-coefficients, 24 x 16 bytes each, in the compiled scene and the block transform). The set-up grows linearly with
+memory is the block's (the peak RSS grows by the block between 100 and 1000 Tp; beyond it by the components'
+coefficients, 24 x 16 bytes each, in the compiled scene and the block transform, and by the power bound of the
+statistics window, which transforms the window's excitation whole, n_h x the window's steps values: 0.19 GB of the
+10,000-Tp run's 0.67 GB, where it held several copies of the transform, 1.02 GB, before 2026-11-27). The set-up grows linearly with
 the components, at most a few tenths of a second at 10,000 Tp: the A_inf correction sums the memory response over
 the frequencies before the matrices (`wecss.compiled.weighted_memory_response`; before: 3.5 s at 6000 Tp) and the
 power bound solves the frequencies in blocks (before: 0.6 GB of matrices at 10,000 Tp, a peak of 1.0 GB). On a
