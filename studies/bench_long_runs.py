@@ -177,12 +177,12 @@ FFT's, that is about 1 us per step more than a short run, some 7 % of a quiet ma
 memory is the block's (the peak RSS grows by the block between 100 and 1000 Tp; beyond it by the components'
 coefficients, 24 x 16 bytes each, in the compiled scene and the block transform, and by the power bound of the
 statistics window, which transforms the window's excitation whole, n_h x the window's steps values: 0.19 GB of the
-10,000-Tp run's 0.67 GB, where it held several copies of the transform, 1.02 GB, before 2026-11-27). The set-up grows linearly with
-the components, at most a few tenths of a second at 10,000 Tp: the A_inf correction sums the memory response over
-the frequencies before the matrices (`wecss.compiled.weighted_memory_response`; before: 3.5 s at 6000 Tp) and the
-power bound solves the frequencies in blocks (before: 0.6 GB of matrices at 10,000 Tp, a peak of 1.0 GB). On a
-shared machine the loop's ratios to 100 Tp move with the load (read them against the spread of the repeats); the
-excitation's columns are the part of a step that depends on the duration."""
+10,000-Tp run's 0.67 GB, where it held several copies of the transform, 1.02 GB, before 2026-11-27). The set-up
+grows linearly with the components, at most a few tenths of a second at 10,000 Tp: the A_inf correction sums the
+memory response over the frequencies before the matrices (`wecss.compiled.weighted_memory_response`; before: 3.5 s
+at 6000 Tp) and the power bound solves the frequencies in blocks (before: 0.6 GB of matrices at 10,000 Tp, a peak
+of 1.0 GB). On a shared machine the loop's ratios to 100 Tp move with the load (read them against the spread of the
+repeats); the excitation's columns are the part of a step that depends on the duration."""
 
 
 def main() -> None:
