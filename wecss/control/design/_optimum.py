@@ -9,8 +9,9 @@ Formulation (pseudo-spectral): the force is a Fourier series on the record's har
 ``basis`` multiple of the waves' highest harmonic, wider than the waves' own so that a saturated force can take its
 shape), the limits hold at the N > 2 M sample points of the period, and the mean mechanical power is exact
 (Parseval). Mechanical power and copper loss make a convex quadratic programme (``_spectral_qp``), solved exactly by
-a dual active-set method with a certificate: the dual value bounds the optimum from above, the primal value from
-below, and their gap is reported. The electrical objective of the asymmetric efficiency is not convex: it is
+a dual active-set method started from the active set ADMM finds (``_admm``), with a certificate: the dual value
+bounds the optimum from above, the primal value from below, and their gap is reported. The electrical objective
+of the asymmetric efficiency is not convex: it is
 P_elec = eta P - (1 / eta - eta) max(-P, 0), and max(f v, 0) <= (alpha f + v / alpha)^2 / 4 for any alpha > 0,
 with equality at a point (f_0, v_0) for alpha^2 = |v_0 / f_0|; so each step of a convex-concave procedure solves
 the convex programme with that majorant at the samples where the present trajectory supplies power (and at every

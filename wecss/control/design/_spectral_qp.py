@@ -20,7 +20,11 @@ samples only through their distance in time, so it is read from a few kernels (o
 multiplied out; the primal force follows from y by one FFT per signal, and every constraint's slack at every sample
 by one inverse FFT per signal. The active set is found by the primal-dual active-set iteration (Hintermueller, Ito
 and Kunisch 2002: rows whose multiplier stays positive, plus rows violated, until the set repeats), with a
-monotone fallback (add the violated rows, drop the negative multipliers) if it cycles.
+monotone fallback (add the violated rows, drop the negative multipliers) if it cycles. Started from the
+unconstrained optimum's violations it can cycle where many limits bind together (the Wavestar's SS3 and SS6, and a
+one-DOF body with force and stroke limits); :meth:`SpectralProgramme.solve_robust` therefore starts it from the
+active set ADMM finds (``_admm``: FFTs and per-harmonic solves only), from which it settles in one iteration in
+every case tried.
 
 Where that iteration does not settle (it can cycle when several limits bind together), :meth:`SpectralProgramme.
 solve_robust` solves the same programme by an interior-point method instead (cvxpy with Clarabel, in the real and
@@ -38,6 +42,7 @@ from typing import Any
 
 import numpy as np
 
+from ._admm import admm_active_set
 from ._periodic import PeriodicResponse
 
 FEASIBILITY: float = 1e-9
@@ -47,10 +52,10 @@ MAX_ITERATIONS: int = 80
 """Most active-set iterations."""
 
 PDAS_ITERATIONS: int = 40
+"""Primal-dual active-set iterations before the monotone fallback."""
 
 CONIC_ENTRIES: float = 2e7
 """Largest dense problem (signals x samples x coefficients) the interior-point fallback takes on."""
-"""Primal-dual active-set iterations before the monotone fallback."""
 
 
 @dataclass(frozen=True)
@@ -291,8 +296,12 @@ class SpectralProgramme:
 
     # --- the solve -------------------------------------------------------------------------------------------------
     def solve_robust(self, active: np.ndarray | None = None) -> tuple[SpectralSolution, np.ndarray | None]:
-        """:meth:`solve`, or :meth:`solve_conic` where the active-set iteration does not settle (then no active
-        set is returned)."""
+        """:meth:`solve` from ``active``, or when none is given from the active set ADMM finds (``_admm``: the
+        dual active-set iteration started from the unconstrained optimum's violations cycles where many limits bind
+        together), or :meth:`solve_conic` where the active-set iteration does not settle (then no active set is
+        returned)."""
+        if active is None and self.constrained:
+            active, _ = admm_active_set(self)
         try:
             return self.solve(active)
         except RuntimeError:
