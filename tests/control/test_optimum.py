@@ -297,3 +297,38 @@ def test_wavestar_sea_states_where_the_active_set_iteration_cycled(state):
     wider = noncausal_optimum(model, exc.omega, exc.coefficients, sc.sea.duration, basis=3.0, **kw)
     assert wider.value >= opt.value * (1 - 1e-9)
     assert wider.value == pytest.approx(opt.value, rel=1e-3)
+
+
+def test_admm_solves_a_penalised_programme_as_the_interior_point_method_does():
+    """One step of the electrical objective's procedure (force and stroke limits, the majorant's penalty rows where
+    the mechanical optimum supplies power): ADMM's solution against the interior-point solve of the same programme,
+    and its dual value a lower bound on that programme's minimum."""
+    from wecss.control.design._spectral_qp import Penalties
+
+    model, omega, amplitude = _record()
+    free = noncausal_optimum(model, omega, amplitude, PERIOD)
+    periodic = periodic_response(model, omega, amplitude, PERIOD)
+    limits = {
+        "force_limit": np.array([0.6 * np.max(np.abs(free.pto_force))]),
+        "stroke_limit": np.array([0.7 * np.max(np.abs(free.stroke))]),
+        "rate_limit": np.array([np.inf]),
+    }
+    hermitian = 0.5 * (periodic.admittance + np.conj(np.swapaxes(periodic.admittance, 1, 2)))
+    signals = _signals(periodic, limits)
+    mechanical, _ = SpectralProgramme(periodic, hermitian, -0.5 * periodic.free_rate, signals).solve_robust()
+    f, v = mechanical.values[0], mechanical.values[2]
+    j, p = np.nonzero(f * v > 0)
+    assert j.size > 10
+    alpha = np.sqrt(np.abs(v[j, p] / f[j, p]))
+    eta = 0.7
+    penalties = Penalties(
+        signal=np.tile(np.array([0, 2]), (j.size, 1)), coefficient=np.stack([alpha, 1 / alpha], axis=1),
+        pto=p, point=j, weight=np.full(j.size, (1 / eta - eta) / (2 * periodic.points)),
+    )  # fmt: skip
+    programme = SpectralProgramme(periodic, eta * hermitian, -0.5 * eta * periodic.free_rate, signals, penalties)
+    conic = programme.solve_conic()
+    admm, _ = programme.solve_admm(tolerance=1e-8)
+    assert admm.method == "ADMM"
+    assert admm.primal == pytest.approx(conic.primal, rel=1e-6)
+    assert admm.dual <= conic.primal + 1e-12 * abs(conic.primal)  # a lower bound on the minimum
+    assert abs(admm.gap) <= 1e-6 * abs(admm.primal) and admm.violation <= 1e-6

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from ._admm import admm_active_set
+from ._admm import AdmmState, admm, admm_active_set
 from ._periodic import PeriodicResponse
 
 FEASIBILITY: float = 1e-9
@@ -129,7 +129,8 @@ class SpectralSolution:
     penalty_values : ndarray (P,)
         e_r at the solution.
     method : str
-        "active set" (:meth:`SpectralProgramme.solve`) or "interior point" (:meth:`SpectralProgramme.solve_conic`).
+        "active set" (:meth:`SpectralProgramme.solve`), "ADMM" (:meth:`SpectralProgramme.solve_admm`) or "interior
+        point" (:meth:`SpectralProgramme.solve_conic`).
     """
 
     force: np.ndarray
@@ -374,6 +375,43 @@ class SpectralProgramme:
             force, primal, dual, primal - dual, violation, int(np.sum(active)), iteration, fallback, values, e
         )
         return solution, active
+
+    # --- the same programme by ADMM, certified ------------------------------------------------------------------
+    def solve_admm(
+        self, state: AdmmState | None = None, tolerance: float = 1e-7, max_iterations: int = 20000
+    ) -> tuple[SpectralSolution, AdmmState]:
+        """The programme solved by ADMM (``_admm``): every iteration FFTs and per-harmonic solves, however many
+        penalty rows (where the exact solve factors a dense matrix of them all); certified by the Lagrangian dual
+        value of its multipliers. The force may violate a limit by about ``tolerance`` of the limit (reported).
+
+        Parameters
+        ----------
+        state : AdmmState or None
+            Start from the end of a similar programme's solve.
+        tolerance : float
+            The residuals' and the duality gap's share at which it stops [-].
+        max_iterations : int
+
+        Returns
+        -------
+        SpectralSolution, AdmmState
+            The solution (method "ADMM") and where ADMM ended.
+
+        Raises
+        ------
+        PenaltiesNotSeparable
+            If the penalties are not of the form ADMM takes (see ``_admm.Splitting``).
+        """
+        result = admm(self, tolerance, max_iterations, state, certify_every=25)
+        values = self.values(result.force)
+        primal, e = self.objective(result.force, values)
+        slack = self._slacks(values)
+        violation = float(max(0.0, -float(np.min(slack, initial=0.0))))
+        solution = SpectralSolution(
+            result.force, primal, result.dual, primal - result.dual, violation, int(np.sum(result.active)),
+            result.iterations, False, values, e, "ADMM",
+        )  # fmt: skip
+        return solution, result.state
 
     # --- the same programme by an interior-point method (cvxpy, Clarabel) ------------------------------------------
     def synthesis(self, k: int) -> np.ndarray:
