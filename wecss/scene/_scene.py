@@ -174,6 +174,10 @@ class SeaState:
         Share of the variance the dropped (smallest) components may carry together [-].
     file : str or None
         Two-column text file: omega [rad/s] and S [m^2 s/rad] (tabulated) or time [s] and elevation [m].
+    spreading : dict or None
+        A directional (short-crested) sea about the mean ``direction``: ``{type = "cos-2s", s = 10}`` or
+        ``{type = "cos-n", n = 2}`` (exponents [-], positive), its energy split over the database's headings
+        (``wecss.waves.spread``; docs/seas.md); None: long-crested. Not for measured elevations or calm water.
     """
 
     kind: str = "jonswap"
@@ -188,9 +192,12 @@ class SeaState:
     direction: float = 0.0
     energy_threshold: float = 1e-4
     file: str | None = None
+    spreading: dict[str, Any] | None = None
 
     def __post_init__(self) -> None:
         check_choice("sea.kind", self.kind, SEA_KINDS)
+        if self.spreading is not None:
+            object.__setattr__(self, "spreading", _spreading(self.spreading, self.kind))
         if self.kind in ("regular", "jonswap", "pierson-moskowitz"):
             if self.period is None or not 0 < self.period < math.inf:
                 raise SceneError(
@@ -234,6 +241,35 @@ class SeaState:
     def ramp_s(self) -> float:
         """Ramp length [s] (0: none)."""
         return 0.0 if _is_zero(self.ramp) else resolve_time(self.ramp, self.period, "sea.ramp")
+
+
+SPREADING_EXPONENTS: dict[str, str] = {"cos-2s": "s", "cos-n": "n"}
+"""The spreading types of ``sea.spreading`` and the name of each one's exponent."""
+
+
+def _spreading(value: Any, kind: str) -> Parameters:
+    """``sea.spreading`` checked and frozen: a table with ``type`` and its exponent (see :class:`SeaState`)."""
+    accepted = 'a table such as {type = "cos-2s", s = 10} or {type = "cos-n", n = 2}'
+    if not isinstance(value, dict):
+        raise SceneError(f"sea.spreading must be {accepted}; got {value!r}")
+    kind_name = value.get("type")
+    if kind_name not in SPREADING_EXPONENTS:
+        raise SceneError(
+            f"sea.spreading.type must be one of {', '.join(SPREADING_EXPONENTS)}; got {kind_name!r} ({accepted})"
+        )
+    exponent = SPREADING_EXPONENTS[kind_name]
+    unknown = sorted(set(value) - {"type", exponent})
+    if unknown:
+        raise SceneError(f"sea.spreading: unknown keys {unknown} for {kind_name!r}; accepted: type, {exponent}")
+    given = value.get(exponent)
+    if isinstance(given, bool) or not isinstance(given, int | float) or not 0 < given < math.inf:
+        raise SceneError(f"sea.spreading.{exponent} must be a positive finite number [-]; got {given!r}")
+    if kind in ("elevation", "calm"):
+        raise SceneError(
+            f"sea.spreading is for seas made of components (regular, spectra); sea.kind = {kind!r} has "
+            + ("no waves" if kind == "calm" else "a measured elevation at one point, which gives no directions")
+        )
+    return Parameters({"type": kind_name, exponent: float(given)})
 
 
 @dataclass(frozen=True)
@@ -718,6 +754,8 @@ class Scene:
         """Nested plain dict (round-trips through :meth:`from_dict`)."""
         out = asdict(self)
         out["outputs"]["variables"] = list(out["outputs"]["variables"])
+        if out["sea"]["spreading"] is not None:
+            out["sea"]["spreading"] = dict(out["sea"]["spreading"])
         return out
 
     def to_json(self) -> str:
