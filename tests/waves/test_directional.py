@@ -237,3 +237,8 @@ def test_response_per_unit_wave_is_refused_for_a_directional_sea(spec: Path) -> 
     compiled = compile_scene(float_scene(spec, {"type": "cos-2s", "s": 5}, sea={"duration": 9.0}))
     with pytest.raises(ValueError, match="several components per frequency"):
         _wave_amplitudes(compiled, compiled.excitation.omega)
+
+
+def test_a_direction_the_database_lacks_is_refused_naming_the_field(spec: Path) -> None:
+    with pytest.raises(SceneError, match=r"sea \(kind 'jonswap', direction 0\.4 rad\) on the database .*not in the"):
+        compile_scene(float_scene(spec, sea={"direction": 0.4, "duration": 9.0}))

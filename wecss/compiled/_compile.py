@@ -286,7 +286,7 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
         return _spread(scene, hydro, wv.regular(sea.height, sea.period, direction=sea.direction)), None  # type: ignore[arg-type]
     if sea.kind == "elevation":
         assert sea.file is not None
-        return _measured(sea), None
+        return dataclasses.replace(_measured(sea), direction=sea.direction), None  # travelling along sea.direction
     spectrum: wv.Spectrum
     if sea.kind == "tabulated":
         assert sea.file is not None
@@ -535,7 +535,13 @@ def compile_plant(scene: Scene) -> CompiledScene:
         if waves.dropped is not None and waves.dropped.count:
             notes.append(f"wave components: {waves.dropped}")
         ramp = wv.Ramp(scene.sea.ramp_s) if scene.sea.ramp_s > 0 else None
-        excitation = wv.excitation_model(hydro, waves, ramp=ramp)
+        try:
+            excitation = wv.excitation_model(hydro, waves, ramp=ramp)
+        except ValueError as err:  # a direction or frequencies the database does not have
+            raise SceneError(
+                f"sea (kind {scene.sea.kind!r}, direction {scene.sea.direction!r} rad) on the database of device "
+                f"{name!r}" + (f" (device.hydro {hydro_name!r})" if hydro_name else "") + f": {err}"
+            ) from None
         if excitation.outside_share > 0:
             notes.append(
                 "wave components outside the database's frequencies left out: "

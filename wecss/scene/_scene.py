@@ -521,12 +521,17 @@ class Outputs:
         Keep no time series, only running statistics (mean PTO power and RMS stroke over the window).
     window : float
         Statistics over the final share of the run (0.5: the final half, as the paper) [-].
+    probes : sequence of (x, y)
+        Points of the still water plane [m], earth frame, where the ``elevation`` group also keeps the undisturbed
+        elevation (``wave_elevation_probe``, dims time and probe, coordinates probe_x and probe_y); needs the
+        ``elevation`` group (so not with ``statistics_only``).
     """
 
     variables: tuple[str, ...] = DEFAULT_OUTPUTS
     every: int = 1
     statistics_only: bool = False
     window: float = 0.5
+    probes: tuple[tuple[float, float], ...] = ()
 
     def __post_init__(self) -> None:
         if isinstance(self.variables, str) or not isinstance(self.variables, list | tuple):
@@ -547,6 +552,32 @@ class Outputs:
             raise SceneError(f"outputs.every must be an integer >= 1; got {self.every!r}")
         if not 0 < self.window <= 1:
             raise SceneError(f"outputs.window is a share of the run in (0, 1]; got {self.window!r}")
+        object.__setattr__(self, "probes", _probes(self.probes))
+        if self.probes and (self.statistics_only or "elevation" not in self.variables):
+            raise SceneError(
+                f"outputs.probes ({len(self.probes)} points) are kept by the 'elevation' group, and "
+                + (
+                    "outputs.statistics_only = true keeps no time series"
+                    if self.statistics_only
+                    else f"outputs.variables = {list(self.variables)} leaves it out"
+                )
+                + ": add 'elevation' to outputs.variables (statistics_only = false) or leave the probes out"
+            )
+
+
+def _probes(value: Any) -> tuple[tuple[float, float], ...]:
+    """``outputs.probes`` checked and frozen: a list of [x, y] points [m]."""
+    accepted = "a list of [x, y] points in metres, such as [[0.0, 0.0], [10.0, 5.0]]"
+    if isinstance(value, str) or not isinstance(value, list | tuple):
+        raise SceneError(f"outputs.probes must be {accepted}; got {value!r}")
+    out = []
+    for k, point in enumerate(value):
+        ok = isinstance(point, list | tuple) and len(point) == 2
+        ok = ok and all(isinstance(c, int | float) and not isinstance(c, bool) and math.isfinite(c) for c in point)
+        if not ok:
+            raise SceneError(f"outputs.probes[{k}] must be [x, y], two finite numbers [m]; got {point!r} ({accepted})")
+        out.append((float(point[0]), float(point[1])))
+    return tuple(out)
 
 
 _SECTIONS: dict[str, type] = {
@@ -754,6 +785,7 @@ class Scene:
         """Nested plain dict (round-trips through :meth:`from_dict`)."""
         out = asdict(self)
         out["outputs"]["variables"] = list(out["outputs"]["variables"])
+        out["outputs"]["probes"] = [list(point) for point in out["outputs"]["probes"]]
         if out["sea"]["spreading"] is not None:
             out["sea"]["spreading"] = dict(out["sea"]["spreading"])
         return out
