@@ -217,7 +217,9 @@ def test_a_database_with_one_heading_is_refused() -> None:
             "radiation": {"method": "none"},
         }
     )
-    with pytest.raises(SceneError, match=r"sea\.spreading .*device 'm4-111''s database has one \(\[0\.0\] degrees\)"):
+    with pytest.raises(
+        SceneError, match=r"sea\.spreading .*the database of device 'm4-111' has one \(\[0\.0\] degrees\)"
+    ):
         compile_scene(sc)
 
 
@@ -242,3 +244,12 @@ def test_response_per_unit_wave_is_refused_for_a_directional_sea(spec: Path) -> 
 def test_a_direction_the_database_lacks_is_refused_naming_the_field(spec: Path) -> None:
     with pytest.raises(SceneError, match=r"sea \(kind 'jonswap', direction 0\.4 rad\) on the database .*not in the"):
         compile_scene(float_scene(spec, sea={"direction": 0.4, "duration": 9.0}))
+
+
+def test_a_spreading_beyond_the_database_headings_is_refused(tmp_path: Path) -> None:
+    half = fl.write_device(tmp_path, headings_deg=np.arange(0.0, 181.0, 15.0))
+    behind = float_scene(half, {"type": "cos-2s", "s": 10}, sea={"direction": math.radians(270.0), "duration": 9.0})
+    with pytest.raises(SceneError, match=r"sea\.spreading .* on the database of device .*float\.toml.*do not cover"):
+        compile_scene(behind)
+    across = float_scene(half, {"type": "cos-2s", "s": 10}, sea={"direction": math.radians(90.0), "duration": 9.0})
+    assert np.unique(compile_scene(across).waves.headings).size > 5

@@ -321,13 +321,17 @@ def _spread(scene: Scene, hydro: HydroData, waves: wv.WaveComponents) -> wv.Wave
     sea = scene.sea
     if sea.spreading is None:
         return waves
-    database = f"device.hydro {scene.device.hydro!r}" if scene.device.hydro else f"device {scene.device.name!r}'s"
+    database = (
+        f"database {scene.device.hydro!r} (device.hydro)"
+        if scene.device.hydro
+        else f"database of device {scene.device.name!r}"
+    )
     headings = np.asarray(hydro.dataset.wave_direction.values, dtype=float)
     listed = f"{np.rad2deg(headings).round(6).tolist()} degrees"
     if np.unique(np.round(np.mod(headings, 2 * np.pi), 9)).size < 2:
         raise SceneError(
-            f"sea.spreading {dict(sea.spreading)} needs a database with several wave headings; the {database} "
-            f"database has one ({listed}): leave sea.spreading out (a long-crested sea along sea.direction) or give "
+            f"sea.spreading {dict(sea.spreading)} needs a database with several wave headings; the {database} has "
+            f"one ({listed}): leave sea.spreading out (a long-crested sea along sea.direction) or give "
             "a database computed for several headings (device.hydro)"
         )
     hydrodynamics = scene.hydrodynamics
@@ -345,7 +349,7 @@ def _spread(scene: Scene, hydro: HydroData, waves: wv.WaveComponents) -> wv.Wave
     try:
         weights = wv.heading_weights(spreading, headings)
     except ValueError as err:
-        raise SceneError(f"sea.spreading {dict(sea.spreading)} on the {database} database: {err}") from None
+        raise SceneError(f"sea.spreading {dict(sea.spreading)} on the {database}: {err}") from None
     return wv.spread(waves, weights, seed=sea.seed, energy_threshold=sea.energy_threshold)
 
 
