@@ -162,9 +162,9 @@ def test_frequency_domain_response_is_the_sum_over_headings(spec: Path) -> None:
     expected_heave = np.real(phasor @ (x * waves.amplitude / z))
     force = result.excitation_force.values[:, 0]
     heave = result.displacement.values[:, 0] - float(compiled.q0[0])
-    # the database interpolates X linearly between its frequencies (phase of the float's position taken out)
-    np.testing.assert_allclose(force, expected_force, atol=2e-3 * np.abs(expected_force).max())
-    np.testing.assert_allclose(heave, expected_heave, atol=2e-3 * np.abs(expected_heave).max())
+    # the run interpolates X and B linearly between the database's 80 frequencies (1e-4 here)
+    np.testing.assert_allclose(force, expected_force, atol=5e-4 * np.abs(expected_force).max())
+    np.testing.assert_allclose(heave, expected_heave, atol=5e-4 * np.abs(expected_heave).max())
 
 
 def test_scene_field_round_trips_and_is_recorded(spec: Path) -> None:

@@ -13,6 +13,7 @@ import xarray as xr
 from scipy.optimize import brentq
 
 from tests.waves import directional_float as fl
+from wecss.control import ControlContext, Controller, Measurement
 from wecss.scene import Scene, SceneError
 from wecss.sim import compile_scene, simulate
 
@@ -140,3 +141,36 @@ def test_probes_round_trip_through_the_scene(spec: Path) -> None:
 def test_malformed_or_unkept_probes_are_refused(outputs: dict, match: str) -> None:
     with pytest.raises(SceneError, match=match):
         Scene.from_dict({"outputs": {"probes": [[0.0, 0.0]], **outputs}})
+
+
+class ElevationRecorder(Controller):
+    """Damping held over each step; keeps the elevation at its point it is given at each call."""
+
+    needs_state = False
+    preview_horizon = None
+
+    def __init__(self, point: tuple[float, float]) -> None:
+        self.elevation_at = point
+        self.seen: list[tuple[float, float]] = []
+
+    def setup(self, context: ControlContext) -> None:
+        self.seen = []
+
+    def compute(self, t: float, measurement: Measurement) -> np.ndarray:
+        self.seen.append((t, float(measurement.elevation)))
+        return -2000.0 * measurement.velocity
+
+
+def test_a_controller_sees_the_probe_elevation_of_a_directional_sea(spec: Path) -> None:
+    """The elevation a controller asks for at a point (``elevation_at``) is the probe's there (two code paths: one
+    time at a call, the whole record after the run)."""
+    sea = {"kind": "jonswap", "height": 0.5, "ramp": 3.0, "direction": 0.4, "spreading": {"type": "cos-2s", "s": 2}}
+    sc = probe_scene(spec, [[4.0, -1.0]], sea=sea)
+    controller = ElevationRecorder((4.0, -1.0))
+    result = simulate(sc, controller=controller)
+    times = np.array([t for t, _ in controller.seen])
+    seen = np.array([value for _, value in controller.seen])
+    index = np.round(times / DT).astype(int)
+    probe = result.wave_elevation_probe.values[index, 0]
+    assert np.abs(probe).max() > 0.05
+    np.testing.assert_allclose(seen, probe, atol=1e-10)
