@@ -253,3 +253,20 @@ def test_a_spreading_beyond_the_database_headings_is_refused(tmp_path: Path) -> 
         compile_scene(behind)
     across = float_scene(half, {"type": "cos-2s", "s": 10}, sea={"direction": math.radians(90.0), "duration": 9.0})
     assert np.unique(compile_scene(across).waves.headings).size > 5
+
+
+def test_a_regular_wave_spread_keeps_its_height_in_variance() -> None:
+    """A regular wave of height H spread over headings: (H / 2)^2 / 2 of variance, split by the weights."""
+    weights = wv.heading_weights(wv.Spreading("cos-n", 2, 0.0), np.deg2rad(np.arange(0.0, 360.0, 30.0)))
+    sea = wv.spread(wv.regular(2.0, 8.0), weights, seed=5, energy_threshold=0.0)
+    assert sea.variance == pytest.approx(0.5, rel=1e-14)
+    np.testing.assert_allclose(np.abs(sea.amplitude) ** 2 / 2, 0.5 * weights.weights[weights.weights > 0], rtol=1e-14)
+    assert sea.repeat_period == 8.0
+
+
+def test_a_sweep_over_the_spreading_exponent() -> None:
+    from wecss.sweep import Sweep
+
+    base = {"sea": {"duration": 12.0, "ramp": 2.0, "spreading": {"type": "cos-2s", "s": 10}}}
+    cases = Sweep(base, (("sea.spreading.s", (2.0, 10.0)),)).cases
+    assert [dict(c.scene.sea.spreading) for c in cases] == [{"type": "cos-2s", "s": s} for s in (2.0, 10.0)]
