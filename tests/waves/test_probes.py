@@ -174,3 +174,22 @@ def test_a_controller_sees_the_probe_elevation_of_a_directional_sea(spec: Path) 
     probe = result.wave_elevation_probe.values[index, 0]
     assert np.abs(probe).max() > 0.05
     np.testing.assert_allclose(seen, probe, atol=1e-10)
+
+
+def test_named_probes(spec: Path, tmp_path: Path) -> None:
+    """A table of probes by name: the names are the probe coordinate; it round-trips and reads from TOML."""
+    path = tmp_path / "scene.toml"
+    path.write_text(
+        f'[device]\nname = "{spec}"\n[sea]\nkind = "regular"\nheight = 0.2\nperiod = 3.0\nduration = 6.0\n'
+        'ramp = 0\n[radiation]\nmethod = "none"\n[outputs]\nvariables = ["motion", "elevation"]\n'
+        "[outputs.probes]\norigin = [0.0, 0.0]\nbuoy = [12.0, -3.5]\n"
+    )
+    sc = Scene.from_toml(path)
+    assert sc.outputs.probe_names == ("origin", "buoy") and sc.outputs.probe_points == ((0.0, 0.0), (12.0, -3.5))
+    assert Scene.from_json(sc.to_json()) == sc
+    result = simulate(sc)
+    assert list(result.probe.values) == ["origin", "buoy"]
+    np.testing.assert_array_equal(result.probe_x.values, [0.0, 12.0])
+    np.testing.assert_array_equal(result.wave_elevation_probe.sel(probe="origin").values, result.wave_elevation.values)
+    with pytest.raises(SceneError, match=r"outputs\.probes\.buoy must be \[x, y\], two finite numbers \[m\]"):
+        Scene.from_dict({"outputs": {"probes": {"buoy": [1.0, 2.0, 3.0]}}})

@@ -521,17 +521,18 @@ class Outputs:
         Keep no time series, only running statistics (mean PTO power and RMS stroke over the window).
     window : float
         Statistics over the final share of the run (0.5: the final half, as the paper) [-].
-    probes : sequence of (x, y)
+    probes : sequence of (x, y), or dict of name to (x, y)
         Points of the still water plane [m], earth frame, where the ``elevation`` group also keeps the undisturbed
-        elevation (``wave_elevation_probe``, dims time and probe, coordinates probe_x and probe_y); needs the
-        ``elevation`` group (so not with ``statistics_only``).
+        elevation (``wave_elevation_probe``, dims time and probe, coordinates probe_x and probe_y; the probe
+        coordinate is the names of a table, else 0, 1, ...); needs the ``elevation`` group (so not with
+        ``statistics_only``).
     """
 
     variables: tuple[str, ...] = DEFAULT_OUTPUTS
     every: int = 1
     statistics_only: bool = False
     window: float = 0.5
-    probes: tuple[tuple[float, float], ...] = ()
+    probes: tuple[tuple[float, float], ...] | dict[str, tuple[float, float]] = ()
 
     def __post_init__(self) -> None:
         if isinstance(self.variables, str) or not isinstance(self.variables, list | tuple):
@@ -564,20 +565,39 @@ class Outputs:
                 + ": add 'elevation' to outputs.variables (statistics_only = false) or leave the probes out"
             )
 
+    @property
+    def probe_points(self) -> tuple[tuple[float, float], ...]:
+        """The points [x, y] [m] of ``probes``, in order."""
+        probes = self.probes
+        return tuple(probes.values()) if isinstance(probes, dict) else tuple(probes)
 
-def _probes(value: Any) -> tuple[tuple[float, float], ...]:
-    """``outputs.probes`` checked and frozen: a list of [x, y] points [m]."""
-    accepted = "a list of [x, y] points in metres, such as [[0.0, 0.0], [10.0, 5.0]]"
-    if isinstance(value, str) or not isinstance(value, list | tuple):
+    @property
+    def probe_names(self) -> tuple[str, ...] | None:
+        """The names of ``probes`` given as a table (None for a list)."""
+        return tuple(self.probes) if isinstance(self.probes, dict) else None
+
+
+def _probes(value: Any) -> tuple[tuple[float, float], ...] | Parameters:
+    """``outputs.probes`` checked and frozen: a list of [x, y] points [m], or a table of them by name."""
+    accepted = (
+        "a list of [x, y] points in metres, such as [[0.0, 0.0], [10.0, 5.0]], or a table of them by name, such "
+        "as {buoy = [10.0, 5.0]}"
+    )
+    named = isinstance(value, dict)
+    if not named and (isinstance(value, str) or not isinstance(value, list | tuple)):
         raise SceneError(f"outputs.probes must be {accepted}; got {value!r}")
+    items = list(value.items()) if named else list(enumerate(value))
     out = []
-    for k, point in enumerate(value):
+    for key, point in items:
+        where = f"outputs.probes.{key}" if named else f"outputs.probes[{key}]"
+        if named and not (isinstance(key, str) and key.strip()):
+            raise SceneError(f"outputs.probes: a probe's name must be a non-empty string; got {key!r}")
         ok = isinstance(point, list | tuple) and len(point) == 2
         ok = ok and all(isinstance(c, int | float) and not isinstance(c, bool) and math.isfinite(c) for c in point)
         if not ok:
-            raise SceneError(f"outputs.probes[{k}] must be [x, y], two finite numbers [m]; got {point!r} ({accepted})")
-        out.append((float(point[0]), float(point[1])))
-    return tuple(out)
+            raise SceneError(f"{where} must be [x, y], two finite numbers [m]; got {point!r} ({accepted})")
+        out.append((key, (float(point[0]), float(point[1]))))
+    return Parameters(dict(out)) if named else tuple(point for _, point in out)
 
 
 _SECTIONS: dict[str, type] = {
@@ -785,7 +805,11 @@ class Scene:
         """Nested plain dict (round-trips through :meth:`from_dict`)."""
         out = asdict(self)
         out["outputs"]["variables"] = list(out["outputs"]["variables"])
-        out["outputs"]["probes"] = [list(point) for point in out["outputs"]["probes"]]
+        probes = out["outputs"]["probes"]
+        if isinstance(probes, dict):
+            out["outputs"]["probes"] = {name: list(point) for name, point in probes.items()}
+        else:
+            out["outputs"]["probes"] = [list(point) for point in probes]
         if out["sea"]["spreading"] is not None:
             out["sea"]["spreading"] = dict(out["sea"]["spreading"])
         return out

@@ -63,7 +63,8 @@ def _coordinate(qs: Quantities, dim: str) -> Any:
     if dim == "omega":
         return qs.record.spectral.omega
     if dim == "probe":
-        return np.arange(len(controlled.scene.outputs.probes))
+        names = controlled.scene.outputs.probe_names
+        return list(names) if names is not None else np.arange(len(controlled.scene.outputs.probe_points))
     raise KeyError(f"no coordinate for dimension {dim!r}")
 
 
@@ -112,7 +113,7 @@ def _add(qs: Quantities, rows: tuple[Variable, ...], data: dict[str, Any], coord
     if "pto" in used:
         coords["pto_kind"] = ("pto", list(qs.controlled.pto_kinds))
     if "probe" in used:
-        probes = np.array(qs.controlled.scene.outputs.probes, dtype=float).reshape(-1, 2)
+        probes = np.array(qs.controlled.scene.outputs.probe_points, dtype=float).reshape(-1, 2)
         coords["probe_x"] = ("probe", probes[:, 0])
         coords["probe_y"] = ("probe", probes[:, 1])
 

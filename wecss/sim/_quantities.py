@@ -120,7 +120,7 @@ def probe_series(controlled: ControlledScene, time: np.ndarray) -> np.ndarray | 
     the run applied it (with the start ramp), each probe evaluated as :func:`elevation_series` evaluates the origin
     (so a probe at the origin equals it); None without probes."""
     scene = controlled.scene
-    probes = scene.outputs.probes
+    probes = scene.outputs.probe_points
     if not probes:
         return None
     out = np.zeros((time.size, len(probes)))
