@@ -191,5 +191,9 @@ def test_named_probes(spec: Path, tmp_path: Path) -> None:
     assert list(result.probe.values) == ["origin", "buoy"]
     np.testing.assert_array_equal(result.probe_x.values, [0.0, 12.0])
     np.testing.assert_array_equal(result.wave_elevation_probe.sel(probe="origin").values, result.wave_elevation.values)
+    simulate(sc, path=tmp_path / "named.nc").close()  # streamed: the names reach the file
+    with xr.open_dataset(tmp_path / "named.nc", engine="netcdf4") as streamed:
+        assert list(streamed.probe.values) == ["origin", "buoy"]
+        np.testing.assert_array_equal(streamed.wave_elevation_probe.values, result.wave_elevation_probe.values)
     with pytest.raises(SceneError, match=r"outputs\.probes\.buoy must be \[x, y\], two finite numbers \[m\]"):
         Scene.from_dict({"outputs": {"probes": {"buoy": [1.0, 2.0, 3.0]}}})
