@@ -57,7 +57,7 @@ GROUPS: tuple[Group, ...] = (
     Group("pto", "PTO strokes, rates, forces and absorbed power"),
     Group("excitation", "wave excitation on the hydrodynamic DOFs"),
     Group("radiation", "radiation memory force and the hydrodynamic DOFs' velocities", default=False),
-    Group("elevation", "undisturbed wave elevation at the origin"),
+    Group("elevation", "undisturbed wave elevation at the origin and at the scene's probes (outputs.probes)"),
     Group("poses", "bodies' centre-of-mass positions and rotation vectors"),
     Group(
         "loads",
@@ -316,6 +316,14 @@ VARIABLES: tuple[Variable, ...] = (
         "undisturbed wave elevation at the origin, as applied (with the start ramp)",
         "m",
         "elevation",
+    ),
+    Variable(
+        "wave_elevation_probe",
+        "elevation",
+        ("time", "probe"),
+        "undisturbed wave elevation at the scene's probes (outputs.probes), as applied (with the start ramp)",
+        "m",
+        "elevation_probe",
     ),
     Variable(
         "body_position",

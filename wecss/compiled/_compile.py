@@ -283,10 +283,10 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
                 f"{lo:.4g}-{hi:.4g} rad/s (periods {2 * np.pi / hi:.4g}-{2 * np.pi / lo:.4g} s)"
             )
     if sea.kind == "regular":
-        return wv.regular(sea.height, sea.period, direction=sea.direction), None  # type: ignore[arg-type]
+        return _spread(scene, hydro, wv.regular(sea.height, sea.period, direction=sea.direction)), None  # type: ignore[arg-type]
     if sea.kind == "elevation":
         assert sea.file is not None
-        return _measured(sea), None
+        return dataclasses.replace(_measured(sea), direction=sea.direction), None  # travelling along sea.direction
     spectrum: wv.Spectrum
     if sea.kind == "tabulated":
         assert sea.file is not None
@@ -305,7 +305,52 @@ def make_waves(scene: Scene, hydro: HydroData) -> tuple[wv.WaveComponents | None
         energy_threshold=sea.energy_threshold,
         direction=sea.direction,
     )
-    return waves, spectrum
+    return _spread(scene, hydro, waves), spectrum
+
+
+def _spread(scene: Scene, hydro: HydroData, waves: wv.WaveComponents) -> wv.WaveComponents:
+    """The scene's waves spread over the database's headings by ``sea.spreading`` (unchanged without one).
+
+    Raises
+    ------
+    SceneError
+        Naming ``sea.spreading``, the database and its headings, when the database has one heading or when the
+        spreading reaches directions its headings do not cover; for the terms that take one direction of waves
+        (body-exact Froude-Krylov, drag with the waves' kinematics).
+    """
+    sea = scene.sea
+    if sea.spreading is None:
+        return waves
+    database = (
+        f"database {scene.device.hydro!r} (device.hydro)"
+        if scene.device.hydro
+        else f"database of device {scene.device.name!r}"
+    )
+    headings = np.asarray(hydro.dataset.wave_direction.values, dtype=float)
+    listed = f"{np.rad2deg(headings).round(6).tolist()} degrees"
+    if np.unique(np.round(np.mod(headings, 2 * np.pi), 9)).size < 2:
+        raise SceneError(
+            f"sea.spreading {dict(sea.spreading)} needs a database with several wave headings; the {database} has "
+            f"one ({listed}): leave sea.spreading out (a long-crested sea along sea.direction) or give "
+            "a database computed for several headings (device.hydro)"
+        )
+    hydrodynamics = scene.hydrodynamics
+    for asked, field_name in (
+        (hydrodynamics.froude_krylov == "body-exact", 'hydrodynamics.froude_krylov = "body-exact"'),
+        (hydrodynamics.drag, "hydrodynamics.drag = true"),
+    ):
+        if asked:
+            raise SceneError(
+                f"sea.spreading with {field_name}: these terms take the incident wave of one direction of "
+                "propagation; leave sea.spreading out or use the linear hydrodynamics alone"
+            )
+    exponent = "s" if sea.spreading["type"] == "cos-2s" else "n"
+    spreading = wv.Spreading(sea.spreading["type"], sea.spreading[exponent], sea.direction)
+    try:
+        weights = wv.heading_weights(spreading, headings)
+    except ValueError as err:
+        raise SceneError(f"sea.spreading {dict(sea.spreading)} on the {database}: {err}") from None
+    return wv.spread(waves, weights, seed=sea.seed, energy_threshold=sea.energy_threshold)
 
 
 def make_radiation(
@@ -494,7 +539,13 @@ def compile_plant(scene: Scene) -> CompiledScene:
         if waves.dropped is not None and waves.dropped.count:
             notes.append(f"wave components: {waves.dropped}")
         ramp = wv.Ramp(scene.sea.ramp_s) if scene.sea.ramp_s > 0 else None
-        excitation = wv.excitation_model(hydro, waves, ramp=ramp)
+        try:
+            excitation = wv.excitation_model(hydro, waves, ramp=ramp)
+        except ValueError as err:  # a direction or frequencies the database does not have
+            raise SceneError(
+                f"sea (kind {scene.sea.kind!r}, direction {scene.sea.direction!r} rad) on the database of device "
+                f"{name!r}" + (f" (device.hydro {hydro_name!r})" if hydro_name else "") + f": {err}"
+            ) from None
         if excitation.outside_share > 0:
             notes.append(
                 "wave components outside the database's frequencies left out: "

@@ -29,6 +29,8 @@ def wave_arrays(waves: WaveComponents | None, depth: float, g: float, ramp: Ramp
     """The incident wave of ``waves`` (None: calm) in water of ``depth`` [m] for the kernels."""
     if waves is None or not waves.omega.size:
         return no_waves()
+    if waves.directional:
+        raise ValueError("the kernels' incident wave has one direction of propagation; these waves are directional")
     return WaveArrays(
         np.ascontiguousarray(waves.omega, dtype=float),
         np.ascontiguousarray(wavenumber(waves.omega, depth, g), dtype=float),

@@ -164,6 +164,11 @@ def _wave_amplitudes(compiled: CompiledScene, omega: np.ndarray) -> np.ndarray:
     out = np.full(omega.size, np.nan, dtype=complex)
     if waves is None:
         return out
+    if waves.directional:
+        raise ValueError(
+            "a directional sea (sea.spreading) has several components per frequency, one per heading: the response "
+            "per unit wave amplitude is not defined; leave sea.spreading out for this output"
+        )
     index = {float(w): k for k, w in enumerate(waves.omega)}
     for k, w in enumerate(omega):
         if float(w) in index:

@@ -49,7 +49,8 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
     ------
     ValueError
         In calm water, for a controller without linear gains, for a device without elastic bodies or with modal
-        coordinates held quasi-static (``flexible.quasi_static_above``: the linear model keeps them dynamic).
+        coordinates held quasi-static (``flexible.quasi_static_above``: the linear model keeps them dynamic), and
+        in a directional sea (``sea.spreading``: several components per frequency, no response per unit wave).
     TypeError
         If ``compiled`` is not a CompiledScene.
     """

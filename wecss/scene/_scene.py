@@ -174,6 +174,10 @@ class SeaState:
         Share of the variance the dropped (smallest) components may carry together [-].
     file : str or None
         Two-column text file: omega [rad/s] and S [m^2 s/rad] (tabulated) or time [s] and elevation [m].
+    spreading : dict or None
+        A directional (short-crested) sea about the mean ``direction``: ``{type = "cos-2s", s = 10}`` or
+        ``{type = "cos-n", n = 2}`` (exponents [-], positive), its energy split over the database's headings
+        (``wecss.waves.spread``; docs/seas.md); None: long-crested. Not for measured elevations or calm water.
     """
 
     kind: str = "jonswap"
@@ -188,9 +192,12 @@ class SeaState:
     direction: float = 0.0
     energy_threshold: float = 1e-4
     file: str | None = None
+    spreading: dict[str, Any] | None = None
 
     def __post_init__(self) -> None:
         check_choice("sea.kind", self.kind, SEA_KINDS)
+        if self.spreading is not None:
+            object.__setattr__(self, "spreading", _spreading(self.spreading, self.kind))
         if self.kind in ("regular", "jonswap", "pierson-moskowitz"):
             if self.period is None or not 0 < self.period < math.inf:
                 raise SceneError(
@@ -234,6 +241,35 @@ class SeaState:
     def ramp_s(self) -> float:
         """Ramp length [s] (0: none)."""
         return 0.0 if _is_zero(self.ramp) else resolve_time(self.ramp, self.period, "sea.ramp")
+
+
+SPREADING_EXPONENTS: dict[str, str] = {"cos-2s": "s", "cos-n": "n"}
+"""The spreading types of ``sea.spreading`` and the name of each one's exponent."""
+
+
+def _spreading(value: Any, kind: str) -> Parameters:
+    """``sea.spreading`` checked and frozen: a table with ``type`` and its exponent (see :class:`SeaState`)."""
+    accepted = 'a table such as {type = "cos-2s", s = 10} or {type = "cos-n", n = 2}'
+    if not isinstance(value, dict):
+        raise SceneError(f"sea.spreading must be {accepted}; got {value!r}")
+    kind_name = value.get("type")
+    if kind_name not in SPREADING_EXPONENTS:
+        raise SceneError(
+            f"sea.spreading.type must be one of {', '.join(SPREADING_EXPONENTS)}; got {kind_name!r} ({accepted})"
+        )
+    exponent = SPREADING_EXPONENTS[kind_name]
+    unknown = sorted(set(value) - {"type", exponent})
+    if unknown:
+        raise SceneError(f"sea.spreading: unknown keys {unknown} for {kind_name!r}; accepted: type, {exponent}")
+    given = value.get(exponent)
+    if isinstance(given, bool) or not isinstance(given, int | float) or not 0 < given < math.inf:
+        raise SceneError(f"sea.spreading.{exponent} must be a positive finite number [-]; got {given!r}")
+    if kind in ("elevation", "calm"):
+        raise SceneError(
+            f"sea.spreading is for seas made of components (regular, spectra); sea.kind = {kind!r} has "
+            + ("no waves" if kind == "calm" else "a measured elevation at one point, which gives no directions")
+        )
+    return Parameters({"type": kind_name, exponent: float(given)})
 
 
 @dataclass(frozen=True)
@@ -485,12 +521,18 @@ class Outputs:
         Keep no time series, only running statistics (mean PTO power and RMS stroke over the window).
     window : float
         Statistics over the final share of the run (0.5: the final half, as the paper) [-].
+    probes : sequence of (x, y), or dict of name to (x, y)
+        Points of the still water plane [m], earth frame, where the ``elevation`` group also keeps the undisturbed
+        elevation (``wave_elevation_probe``, dims time and probe, coordinates probe_x and probe_y; the probe
+        coordinate is the names of a table, else 0, 1, ...); needs the ``elevation`` group (so not with
+        ``statistics_only``).
     """
 
     variables: tuple[str, ...] = DEFAULT_OUTPUTS
     every: int = 1
     statistics_only: bool = False
     window: float = 0.5
+    probes: tuple[tuple[float, float], ...] | dict[str, tuple[float, float]] = ()
 
     def __post_init__(self) -> None:
         if isinstance(self.variables, str) or not isinstance(self.variables, list | tuple):
@@ -511,6 +553,51 @@ class Outputs:
             raise SceneError(f"outputs.every must be an integer >= 1; got {self.every!r}")
         if not 0 < self.window <= 1:
             raise SceneError(f"outputs.window is a share of the run in (0, 1]; got {self.window!r}")
+        object.__setattr__(self, "probes", _probes(self.probes))
+        if self.probes and (self.statistics_only or "elevation" not in self.variables):
+            raise SceneError(
+                f"outputs.probes ({len(self.probes)} points) are kept by the 'elevation' group, and "
+                + (
+                    "outputs.statistics_only = true keeps no time series"
+                    if self.statistics_only
+                    else f"outputs.variables = {list(self.variables)} leaves it out"
+                )
+                + ": add 'elevation' to outputs.variables (statistics_only = false) or leave the probes out"
+            )
+
+    @property
+    def probe_points(self) -> tuple[tuple[float, float], ...]:
+        """The points [x, y] [m] of ``probes``, in order."""
+        probes = self.probes
+        return tuple(probes.values()) if isinstance(probes, dict) else tuple(probes)
+
+    @property
+    def probe_names(self) -> tuple[str, ...] | None:
+        """The names of ``probes`` given as a table (None for a list)."""
+        return tuple(self.probes) if isinstance(self.probes, dict) else None
+
+
+def _probes(value: Any) -> tuple[tuple[float, float], ...] | Parameters:
+    """``outputs.probes`` checked and frozen: a list of [x, y] points [m], or a table of them by name."""
+    accepted = (
+        "a list of [x, y] points in metres, such as [[0.0, 0.0], [10.0, 5.0]], or a table of them by name, such "
+        "as {buoy = [10.0, 5.0]}"
+    )
+    named = isinstance(value, dict)
+    if not named and (isinstance(value, str) or not isinstance(value, list | tuple)):
+        raise SceneError(f"outputs.probes must be {accepted}; got {value!r}")
+    items = list(value.items()) if named else list(enumerate(value))
+    out = []
+    for key, point in items:
+        where = f"outputs.probes.{key}" if named else f"outputs.probes[{key}]"
+        if named and not (isinstance(key, str) and key.strip()):
+            raise SceneError(f"outputs.probes: a probe's name must be a non-empty string; got {key!r}")
+        ok = isinstance(point, list | tuple) and len(point) == 2
+        ok = ok and all(isinstance(c, int | float) and not isinstance(c, bool) and math.isfinite(c) for c in point)
+        if not ok:
+            raise SceneError(f"{where} must be [x, y], two finite numbers [m]; got {point!r} ({accepted})")
+        out.append((key, (float(point[0]), float(point[1]))))
+    return Parameters(dict(out)) if named else tuple(point for _, point in out)
 
 
 _SECTIONS: dict[str, type] = {
@@ -718,6 +805,13 @@ class Scene:
         """Nested plain dict (round-trips through :meth:`from_dict`)."""
         out = asdict(self)
         out["outputs"]["variables"] = list(out["outputs"]["variables"])
+        probes = out["outputs"]["probes"]
+        if isinstance(probes, dict):
+            out["outputs"]["probes"] = {name: list(point) for name, point in probes.items()}
+        else:
+            out["outputs"]["probes"] = [list(point) for point in probes]
+        if out["sea"]["spreading"] is not None:
+            out["sea"]["spreading"] = dict(out["sea"]["spreading"])
         return out
 
     def to_json(self) -> str:

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..compiled import CompiledScene
 from ..control import ControlledScene, Measurement
-from ..waves import evaluate, wavenumber
+from ..waves import evaluate
 from ._watchdog import Watchdog
 
 
@@ -118,9 +118,7 @@ def _elevation_coefficients(compiled: CompiledScene, x: float, y: float) -> np.n
     waves = compiled.waves
     if waves is None:
         return None
-    k = wavenumber(waves.omega, compiled.hydro.water_depth, compiled.hydro.g)
-    along = x * np.cos(waves.direction) + y * np.sin(waves.direction)
-    return waves.amplitude * np.exp(-1j * k * along)
+    return waves.at_point(x, y, compiled.hydro.water_depth, compiled.hydro.g)
 
 
 def _elevation(compiled: CompiledScene, coefficients: np.ndarray | None, t: float) -> float:

@@ -62,6 +62,9 @@ def _coordinate(qs: Quantities, dim: str) -> Any:
         return list(qs.get("fibre_field").names)
     if dim == "omega":
         return qs.record.spectral.omega
+    if dim == "probe":
+        names = controlled.scene.outputs.probe_names
+        return list(names) if names is not None else np.arange(len(controlled.scene.outputs.probe_points))
     raise KeyError(f"no coordinate for dimension {dim!r}")
 
 
@@ -109,16 +112,23 @@ def _add(qs: Quantities, rows: tuple[Variable, ...], data: dict[str, Any], coord
             coords[dim] = _coordinate(qs, dim)
     if "pto" in used:
         coords["pto_kind"] = ("pto", list(qs.controlled.pto_kinds))
+    if "probe" in used:
+        probes = np.array(qs.controlled.scene.outputs.probe_points, dtype=float).reshape(-1, 2)
+        coords["probe_x"] = ("probe", probes[:, 0])
+        coords["probe_y"] = ("probe", probes[:, 1])
 
 
 def series_variables(
-    controlled: ControlledScene, record: Record, elevation: np.ndarray | None = None
+    controlled: ControlledScene,
+    record: Record,
+    elevation: np.ndarray | None = None,
+    elevation_probe: np.ndarray | None = None,
 ) -> tuple[dict[str, Any], dict[str, Any], tuple[np.ndarray, np.ndarray] | None]:
     """The time-series variables of the streamed output groups and their coordinates, and the poses when they were
-    computed (for the notes). ``elevation``: the ``elevation`` quantity at ``record.time`` when the caller has it
-    (:func:`elevation_series`)."""
+    computed (for the notes). ``elevation``, ``elevation_probe``: the ``elevation`` and ``elevation_probe``
+    quantities at ``record.time`` when the caller has them (:func:`elevation_series`, :func:`probe_series`)."""
     groups = output_groups(controlled) & set(STREAMED_GROUPS)
-    qs = Quantities(controlled, record, elevation)
+    qs = Quantities(controlled, record, elevation, elevation_probe=elevation_probe)
     data: dict[str, Any] = {}
     coords: dict[str, Any] = {}
     if record.time.size and groups:

@@ -34,14 +34,16 @@ from ._sections import hot_spot_stresses
 class Quantities:
     """The quantities of one record, each computed once on first use (:meth:`get`).
 
-    ``elevation``: the ``elevation`` quantity at ``record.time`` when the caller has it (a streamed run evaluates
-    the whole run's once). ``notes`` collects what a quantity has to say (a power bound that could not be had).
+    ``elevation``, ``elevation_probe``: the ``elevation`` and ``elevation_probe`` quantities at ``record.time`` when
+    the caller has them (a streamed run evaluates the whole run's once). ``notes`` collects what a quantity has to
+    say (a power bound that could not be had).
     """
 
     controlled: ControlledScene
     record: Record
     elevation: np.ndarray | None = None
     notes: list[str] = field(default_factory=list)
+    elevation_probe: np.ndarray | None = None
     _values: dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -111,6 +113,25 @@ def elevation_series(controlled: ControlledScene, time: np.ndarray) -> np.ndarra
 
 def _elevation(qs: Quantities) -> np.ndarray:
     return elevation_series(qs.controlled, qs.record.time) if qs.elevation is None else qs.elevation
+
+
+def probe_series(controlled: ControlledScene, time: np.ndarray) -> np.ndarray | None:
+    """The undisturbed elevation at the scene's probes (``outputs.probes``) at ``time`` (n_times, n_probes) [m], as
+    the run applied it (with the start ramp), each probe evaluated as :func:`elevation_series` evaluates the origin
+    (so a probe at the origin equals it); None without probes."""
+    scene = controlled.scene
+    probes = scene.outputs.probe_points
+    if not probes:
+        return None
+    out = np.zeros((time.size, len(probes)))
+    waves = controlled.waves
+    if waves is not None:
+        depth, g = controlled.hydro.water_depth, controlled.hydro.g
+        for j, (x, y) in enumerate(probes):
+            out[:, j] = waves.elevation_at(time, x, y, depth, g)
+    if scene.sea.ramp_s > 0 and scene.runner.capabilities.transient:
+        out *= Ramp(scene.sea.ramp_s)(time)[:, None]
+    return out
 
 
 def _poses(qs: Quantities) -> tuple[np.ndarray, np.ndarray]:
@@ -311,6 +332,9 @@ QUANTITIES: dict[str, Callable[[Quantities], Any]] = {
     "radiation": lambda qs: qs.hydro_columns(qs.record["rad"]),
     "hydro_velocity": _hydro_velocity,
     "elevation": _elevation,
+    "elevation_probe": lambda qs: (
+        probe_series(qs.controlled, qs.record.time) if qs.elevation_probe is None else qs.elevation_probe
+    ),
     "poses": _poses,
     "body_position": lambda qs: qs.get("poses")[0],
     "body_rotation": lambda qs: qs.get("poses")[1],

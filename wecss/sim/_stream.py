@@ -26,7 +26,7 @@ from ..outputs import STREAMED_GROUPS
 from ..provenance import with_relative_paths
 from ._dataset import series_variables, statistics_dataset
 from ._guards import MotionSummary
-from ._quantities import elevation_series
+from ._quantities import elevation_series, probe_series
 from ._record import Record
 
 STREAM_STEPS: int = 10_000
@@ -61,8 +61,11 @@ class ResultStream:
         # the elevation of the whole run (8 bytes per saved step), evaluated as build_result does (one FFT over
         # the record's times where it is periodic): the file's values are those of a whole run, not round-off apart
         self.elevation: np.ndarray | None = None
+        self.probes: np.ndarray | None = None
         if "elevation" in outputs.variables:
-            self.elevation = elevation_series(compiled, np.arange(self.n_save) * self.every * compiled.dt)
+            times = np.arange(self.n_save) * self.every * compiled.dt
+            self.elevation = elevation_series(compiled, times)
+            self.probes = probe_series(compiled, times)  # (8 bytes per probe and saved step)
 
     @property
     def rows(self) -> int:
@@ -75,7 +78,8 @@ class ResultStream:
             return
         rows = slice(self.writer.rows, self.writer.rows + part.time.size)
         eta = None if self.elevation is None else self.elevation[rows]
-        data, coords, known = series_variables(self.compiled, part, eta)
+        probes = None if self.probes is None else self.probes[rows]
+        data, coords, known = series_variables(self.compiled, part, eta, probes)
         if known is None:  # the notes read the poses; computed here when no output has them
             known = poses(self.compiled.plant, np.ascontiguousarray(part["q"]))
         self.motion.add(part["q"], known)

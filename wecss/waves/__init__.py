@@ -1,6 +1,13 @@
-"""Waves: spectra, elevation records (regular, irregular, periodic, measured) and excitation forces in time."""
+"""Waves: spectra, elevation records (regular, irregular, periodic, measured), directional spreading and
+excitation forces in time."""
 
 from ._blocks import BlockSum as BlockSum
+from ._directional import SPREADING_TYPES as SPREADING_TYPES
+from ._directional import HeadingWeights as HeadingWeights
+from ._directional import Spreading as Spreading
+from ._directional import heading_bins as heading_bins
+from ._directional import heading_weights as heading_weights
+from ._directional import spread as spread
 from ._elevation import DEFAULT_ENERGY_THRESHOLD as DEFAULT_ENERGY_THRESHOLD
 from ._elevation import DroppedComponents as DroppedComponents
 from ._elevation import Ramp as Ramp

@@ -2,7 +2,9 @@
 measured elevation records, a cosine ramp, and the dropping of components that carry negligible energy.
 
 A component k has angular frequency omega_k and complex amplitude A_k at the reference point x = 0, so that the
-undisturbed elevation is eta(x, t) = sum_k Re[A_k exp(i (omega_k t - k_k x))] for waves travelling along +x.
+undisturbed elevation is eta(x, t) = sum_k Re[A_k exp(i (omega_k t - k_k x))] for waves travelling along +x, and
+at a point (x, y) for a component travelling in the direction beta_k, x is replaced by x cos beta_k + y sin beta_k
+(:meth:`WaveComponents.at_point`).
 """
 
 from __future__ import annotations
@@ -11,8 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..constants import GRAVITY
 from ._blocks import harmonic_numbers, harmonic_period
-from ._spectra import Spectrum
+from ._spectra import Spectrum, wavenumber
 
 DEFAULT_ENERGY_THRESHOLD: float = 1e-4
 """Default share of the variance that the dropped (smallest) components may carry together [-]."""
@@ -50,6 +53,9 @@ class WaveComponents:
         The record repeats with this period [s] (periodic records: 2 pi / d_omega), or None.
     dropped : DroppedComponents or None
         What was dropped when the components were made.
+    headings : ndarray (n,) or None
+        Direction of propagation of each component [rad] in a directional (short-crested) sea, where
+        ``direction`` is the mean (``wecss.waves.spread``); None: every component travels along ``direction``.
     """
 
     omega: np.ndarray
@@ -57,6 +63,7 @@ class WaveComponents:
     direction: float = 0.0
     repeat_period: float | None = None
     dropped: DroppedComponents | None = None
+    headings: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         omega = np.atleast_1d(np.asarray(self.omega, dtype=float))
@@ -69,6 +76,38 @@ class WaveComponents:
             raise ValueError(f"direction is in radians; got {self.direction!r}, which looks like degrees")
         object.__setattr__(self, "omega", omega)
         object.__setattr__(self, "amplitude", amplitude)
+        if self.headings is not None:
+            headings = np.atleast_1d(np.asarray(self.headings, dtype=float))
+            if headings.shape != omega.shape or not np.all(np.isfinite(headings)):
+                raise ValueError(
+                    f"headings must be finite, one per component [rad]; got shape {headings.shape} for {omega.size}"
+                )
+            object.__setattr__(self, "headings", headings)
+
+    @property
+    def directional(self) -> bool:
+        """The components travel in several directions (``headings`` per component)."""
+        return self.headings is not None
+
+    @property
+    def component_directions(self) -> np.ndarray:
+        """Direction of propagation of every component [rad] (n,)."""
+        return self.headings if self.headings is not None else np.full(self.omega.size, float(self.direction))
+
+    def at_point(self, x: float, y: float, depth: float = np.inf, g: float = GRAVITY) -> np.ndarray:
+        """Complex amplitudes of the components at the point (x, y) [m] of the still water plane, in water of
+        ``depth`` [m]: A_k exp(-i k_k (x cos beta_k + y sin beta_k)), k_k from the dispersion relation (n,)."""
+        beta = self.component_directions
+        k = wavenumber(self.omega, depth, g)
+        return self.amplitude * np.exp(-1j * k * (x * np.cos(beta) + y * np.sin(beta)))
+
+    def elevation_at(
+        self, time: np.ndarray, x: float, y: float, depth: float = np.inf, g: float = GRAVITY
+    ) -> np.ndarray:
+        """Undisturbed elevation [m] at the point (x, y) [m] at ``time`` [s], in water of ``depth`` [m] (no ramp);
+        at the origin it is :meth:`elevation`."""
+        coefficients = self.at_point(x, y, depth, g)
+        return np.real(evaluate(coefficients[None, :], self.omega, np.asarray(time, dtype=float)))[0]
 
     @property
     def variance(self) -> float:
@@ -290,8 +329,14 @@ def drop_negligible(components: WaveComponents, threshold: float = DEFAULT_ENERG
     n_drop = int(np.searchsorted(cumulative, threshold, side="right"))
     keep = np.sort(order[n_drop:])
     report = DroppedComponents(n_drop, keep.size, float(cumulative[n_drop - 1]) if n_drop else 0.0, threshold)
+    headings = None if components.headings is None else components.headings[keep]
     return WaveComponents(
-        components.omega[keep], components.amplitude[keep], components.direction, components.repeat_period, report
+        components.omega[keep],
+        components.amplitude[keep],
+        components.direction,
+        components.repeat_period,
+        report,
+        headings,
     )
 
 

@@ -133,7 +133,8 @@ def excitation_model(
     ramp: Ramp | None = None,
     max_outside_share: float = MAX_OUTSIDE_SHARE,
 ) -> ExcitationModel:
-    """Excitation of every DOF of ``hydro`` by ``waves``.
+    """Excitation of every DOF of ``hydro`` by ``waves`` (in a directional sea, each component by the database's
+    excitation at its own heading, and the components of one frequency summed into one column).
 
     Components outside the database's frequency range are left out when together they carry at most
     ``max_outside_share`` of the wave variance (reported in ``outside_share``).
@@ -153,5 +154,17 @@ def excitation_model(
             "use a database with a wider frequency range or a sea state inside it"
         )
     omega = waves.omega[inside]
-    x = excitation_coefficients(hydro, omega, waves.direction)
-    return ExcitationModel(tuple(hydro.dofs), omega, x * waves.amplitude[inside][None, :], ramp, share)
+    if waves.headings is None:
+        x = excitation_coefficients(hydro, omega, waves.direction)
+        return ExcitationModel(tuple(hydro.dofs), omega, x * waves.amplitude[inside][None, :], ramp, share)
+    # a directional sea: each heading's components by the database's excitation at that heading, then the
+    # components of one frequency (on every heading) summed into one column
+    headings = waves.headings[inside]
+    amplitude = waves.amplitude[inside]
+    unique, column = np.unique(omega, return_inverse=True)
+    coefficients = np.zeros((len(hydro.dofs), unique.size), dtype=complex)
+    for heading in np.unique(headings):
+        rows = np.flatnonzero(headings == heading)
+        x = excitation_coefficients(hydro, omega[rows], float(heading))
+        np.add.at(coefficients.T, column[rows], (x * amplitude[rows][None, :]).T)
+    return ExcitationModel(tuple(hydro.dofs), unique, coefficients, ramp, share)
