@@ -332,3 +332,20 @@ def test_admm_solves_a_penalised_programme_as_the_interior_point_method_does():
     assert admm.primal == pytest.approx(conic.primal, rel=1e-6)
     assert admm.dual <= conic.primal + 1e-12 * abs(conic.primal)  # a lower bound on the minimum
     assert abs(admm.gap) <= 1e-6 * abs(admm.primal) and admm.violation <= 1e-6
+
+
+def test_an_admittance_rounded_below_passivity_is_floored_and_counted():
+    """A Hermitian part with an eigenvalue at -1e-10 of the largest (a database's rounding, seen on m4-134 at
+    Tp 1.6 s below the waves' band) is raised to the floor on those harmonics only, its eigenvectors kept; the
+    others are untouched."""
+    from wecss.control.design._optimum import PASSIVITY_FLOOR, _passive
+
+    rng = np.random.default_rng(3)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)) + 1j * rng.normal(size=(3, 3)))
+    good = q @ np.diag([1.0, 0.5, 0.2]) @ q.conj().T
+    bad = q @ np.diag([1.0, 0.5, -1e-10]) @ q.conj().T
+    out, count = _passive(np.stack([good, bad, good]))
+    assert count == 1
+    assert np.array_equal(out[0], good) and np.array_equal(out[2], good)
+    assert np.allclose(out[1], q @ np.diag([1.0, 0.5, PASSIVITY_FLOOR]) @ q.conj().T, atol=1e-14)
+    np.linalg.cholesky(out[1])

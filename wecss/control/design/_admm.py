@@ -68,7 +68,7 @@ class AdmmResult:
 class Splitting:
     """The splitting of a :class:`SpectralProgramme` (module docstring): which signals are split, their scales,
     boxes and operators, and the penalty rows in scaled variables (none with ``with_penalties`` false: the
-    programme's limits alone).
+    programme's limits alone); the signals ``extra`` are split too (free unless limited).
 
     Raises
     ------
@@ -76,14 +76,14 @@ class Splitting:
         If a penalty's second signal is limited, both its signals are the same, or two penalties share a sample.
     """
 
-    def __init__(self, programme: SpectralProgramme, with_penalties: bool = True) -> None:
+    def __init__(self, programme: SpectralProgramme, with_penalties: bool = True, extra: tuple[int, ...] = ()) -> None:
         periodic = programme.periodic
         n, n_pto = periodic.points, periodic.n_pto
         self.programme = programme
         pen = programme.penalties if with_penalties and programme.penalties is not None else None
         has_penalties = pen is not None and pen.size > 0
         penalised = set(np.unique(pen.signal).tolist()) if pen is not None and has_penalties else set()
-        used = sorted(set(programme.constrained) | penalised)
+        used = sorted(set(programme.constrained) | penalised | set(extra))
         self.used = used
         position = {k: i for i, k in enumerate(used)}
         start = [programme.signals[k].free + periodic.samples(
@@ -97,7 +97,7 @@ class Splitting:
             upper[i] = programme._bound[c, :, 1]
             scale[i] = programme._size[c, :, 0]
         for i, k in enumerate(used):
-            if k not in programme.constrained:  # a penalised signal only: its RMS at the unconstrained optimum
+            if k not in programme.constrained:  # a penalised or extra signal: its RMS at the unconstrained optimum
                 rms = np.sqrt(np.mean(start[i] ** 2, axis=0))
                 scale[i] = np.where(rms > 0, rms, 1.0)
         self.scale, self.lower, self.upper = scale, lower / scale, upper / scale

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._electrical_admm import electrical_admm
 from ._periodic import PeriodicResponse, periodic_response
 from ._spectral_qp import Penalties, Signal, SpectralProgramme, SpectralSolution
 
@@ -91,7 +92,8 @@ class NonCausalOptimum:
         or "interior point" (where the active set did not settle).
     periodic : PeriodicResponse
     settings : dict
-        The limits, efficiency, copper loss and basis it was made with.
+        The limits, efficiency, copper loss and basis it was made with, and how many harmonics' admittance had an
+        eigenvalue raised to the passivity floor (``floored_harmonics``; see ``PASSIVITY_FLOOR``).
     """
 
     objective: str
@@ -312,7 +314,7 @@ def noncausal_optimum(
     if np.any(loss < 0):
         raise ValueError(f"copper_loss must be >= 0; got {copper_loss!r}")
     signals = _signals(periodic, limits)
-    hermitian = 0.5 * (periodic.admittance + np.conj(np.swapaxes(periodic.admittance, 1, 2)))
+    hermitian, floored = _passive(0.5 * (periodic.admittance + np.conj(np.swapaxes(periodic.admittance, 1, 2))))
     linear = -0.5 * periodic.free_rate
     if objective == "copper":
         programme = SpectralProgramme(periodic, hermitian + np.diag(loss)[None], linear, signals)
@@ -344,8 +346,30 @@ def noncausal_optimum(
         settings={
             **{k: v.tolist() for k, v in limits.items()}, "efficiency": efficiency, "copper_loss": loss.tolist(),
             "basis": float(periodic.harmonic[-1] / periodic.wave_harmonics.max()),
+            "floored_harmonics": floored,
         },
     )  # fmt: skip
+
+
+PASSIVITY_FLOOR: float = 1e-9
+"""The least eigenvalue of the admittance's Hermitian part, as a share of its largest over all harmonics, that the
+programme keeps (a passive plant's is >= 0; a database's rounding leaves some at -1e-10 of the largest)."""
+
+
+def _passive(hermitian: np.ndarray) -> tuple[np.ndarray, int]:
+    """The Hermitian parts of the admittance (M, n_pto, n_pto) with every eigenvalue at least PASSIVITY_FLOOR of the
+    largest, and how many harmonics needed it. A direction in which a PTO force moves the PTOs without radiating
+    (no damping: at the record's lowest harmonics, well below the waves' band) would let the programme absorb any
+    power there if its eigenvalue is rounded below zero, and the programme needs a positive definite Hessian."""
+    values, vectors = np.linalg.eigh(hermitian)
+    floor = PASSIVITY_FLOOR * float(np.max(values, initial=0.0))
+    low = np.any(values < floor, axis=1)
+    if not np.any(low):
+        return hermitian, 0
+    clipped = np.maximum(values[low], floor)
+    out = hermitian.copy()
+    out[low] = np.einsum("mpk,mk,mqk->mpq", vectors[low], clipped, np.conj(vectors[low]))
+    return out, int(np.sum(low))
 
 
 def _signals(periodic: PeriodicResponse, limits: dict[str, np.ndarray]) -> list[Signal]:
@@ -378,6 +402,11 @@ def _electrical_power(power: np.ndarray, efficiency: float) -> np.ndarray:
     return np.where(power >= 0, efficiency * power, power / efficiency)
 
 
+def _mean_electrical(values: list[np.ndarray], efficiency: float) -> float:
+    """Mean electrical power of all PTOs at the samples of the signals ``values`` (force first, rate third) [W]."""
+    return float(np.sum(np.mean(_electrical_power(-values[0] * values[2], efficiency), axis=0)))
+
+
 def _electrical(
     periodic: PeriodicResponse,
     hermitian: np.ndarray,
@@ -390,12 +419,21 @@ def _electrical(
     n = periodic.points
     supply = 1.0 / efficiency - efficiency
     weight = supply / (2.0 * n)  # w e^2 / 2 = supply e^2 / (4 N)
+    # a stationary point of the whole electrical objective by nonconvex ADMM, kept where it beats the mechanical optimum
+    plain = SpectralProgramme(periodic, efficiency * hermitian, efficiency * linear, signals)
+    force, admm_iterations = electrical_admm(plain, supply / n)
+    values = plain.values(force)
+    primal, e = plain.objective(force, values)
+    violation = float(max(0.0, -float(np.min(plain._slacks(values), initial=0.0))))
+    guess = SpectralSolution(force, primal, np.nan, np.nan, violation, 0, admm_iterations, False, values, e, "ADMM")
     solution = start
-    iterations = start.iterations
+    iterations = start.iterations + admm_iterations
+    if violation <= 1e-6 and _mean_electrical(guess.values, efficiency) > _mean_electrical(start.values, efficiency):
+        solution = guess
     state = None  # where the last ADMM solve ended: the next, similar, programme starts there
 
     def electrical(values: list[np.ndarray]) -> float:
-        return float(np.sum(np.mean(_electrical_power(-values[0] * values[2], efficiency), axis=0)))
+        return _mean_electrical(values, efficiency)
 
     value = electrical(solution.values)
     force_rms = np.sqrt(np.mean(solution.values[0] ** 2, axis=0)) + 1e-300
@@ -424,8 +462,13 @@ def _electrical(
             rows |= new  # add the majorant there and solve again: then the procedure cannot lose
 
         improved = trial_value - value
+        if improved <= 0:  # lost (the programme solved too loosely) or stationary: tighter, or done
+            if tolerance <= ADMM_TIGHT:
+                break
+            tolerance = max(0.01 * tolerance, ADMM_TIGHT)
+            continue
         solution, value = trial, trial_value
         if improved <= CCP_TOLERANCE * max(abs(value), 1e-300) and tolerance <= ADMM_TIGHT:
             break
-        tolerance = float(np.clip(0.1 * abs(improved) / max(abs(value), 1e-300), ADMM_TIGHT, ADMM_LOOSE))
+        tolerance = float(np.clip(0.1 * improved / max(abs(value), 1e-300), ADMM_TIGHT, ADMM_LOOSE))
     return solution, value, iterations, ccp
