@@ -185,7 +185,6 @@ def test_every_block_has_a_known_language() -> None:
 
 def test_markers_have_reasons() -> None:
     """Every docs-test marker is a known kind and gives its reason; the skipped blocks are listed here."""
-    bad = [f"{b.id}: {b.marker} ({b.reason})" for b in BLOCKS if b.marker is not None]
     bad = [f"{b.id}" for b in BLOCKS if b.marker is not None and (b.marker not in MARKERS or not b.reason)]
     assert not bad, f"docs-test markers of an unknown kind or without a reason: {bad}"
     skipped = {b.id: b.reason for b in BLOCKS if b.marker == "skip"}
@@ -197,3 +196,14 @@ def test_blocks_found() -> None:
     """The extraction finds blocks (a change of fence style would otherwise pass silently)."""
     assert len(RUNNABLE) >= 30
     assert {b.page for b in RUNNABLE} >= {"README.md", "docs/control.md", "docs/simulator.md", "docs/byo-bem.md"}
+
+
+def test_every_page_is_in_the_site_navigation() -> None:
+    """Every docs/*.md is a page of the documentation site's navigation (mkdocs.yml), and every page named there
+    exists; ``mkdocs build --strict`` (``make docs``) refuses either, this says which page at once."""
+    text = (ROOT / "mkdocs.yml").read_text()
+    nav = text[text.index("\nnav:") :]
+    named = set(re.findall(r":\s*([\w/.-]+\.md)\s*$", nav, flags=re.MULTILINE))
+    pages = {p.relative_to(ROOT / "docs").as_posix() for p in (ROOT / "docs").rglob("*.md")}
+    assert pages - named == set(), f"pages missing from the nav of mkdocs.yml: {sorted(pages - named)}"
+    assert named - pages == set(), f"mkdocs.yml names pages that do not exist: {sorted(named - pages)}"
