@@ -4,9 +4,13 @@ A block is a fence of three backticks with a language (``python``, ``sh``, ``tom
 comment just before the fence (blank lines between allowed) marks a block the test treats differently:
 
 - ``<!-- docs-test: skip (reason) -->``: not run (a command that builds a virtual environment, a cluster address);
-- ``<!-- docs-test: slow (reason) -->``: run only with ``-m slow``.
+- ``<!-- docs-test: slow (reason) -->``: run only with ``-m slow``;
+- ``<!-- docs-test: fragment (of what) -->``: a TOML block that is a part of a file (tables of a device spec): parsed
+  only;
+- ``<!-- docs-test: file (NAME) -->``: the block is a file the page's other blocks read; the test writes it as NAME in
+  the page's folder (and reads it as its kind).
 
-Every marker must give its reason in parentheses.
+Every marker must give its reason (or file name) in parentheses.
 """
 
 from __future__ import annotations

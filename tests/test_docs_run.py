@@ -2,7 +2,8 @@
 
 - ``python`` blocks: the blocks of one page run in order in one namespace, in a temporary working folder of the
   page, so a later block may use the names of an earlier one;
-- ``sh`` blocks: every line a ``wecss ...`` command, run as ``python -m wecss.cli ...`` in the page's folder;
+- ``sh`` blocks: every line a ``wecss ...`` command, run by ``wecss.cli.main([...])`` in the page's folder (exit
+  status 0);
 - ``toml`` blocks: parsed, and read by the project's own readers: a sweep file by ``Sweep.from_dict``, a scene
   (its sections) by ``Scene.from_dict``, a complete device spec by ``Device.from_spec``, a ``hydro`` file with its
   ``[hydro_options]`` by ``Device.hydro``; a part of a device spec (a ``fragment`` marker says which) only parsed;
@@ -10,7 +11,8 @@
 
 The page's folder sits beside a link ``../shared`` to the repository's ``../shared``, so a block reads the public
 reference data as ``../shared/data/...``, as from the repository root; a block that names a file there is skipped
-when the file is absent. A ``<!-- docs-test: file (NAME) -->`` marker before a block writes the block to NAME in the
+when the file is absent (``WECSS_DOCS_SHARED`` names another ``shared`` folder: a git worktree has none beside
+it). A ``<!-- docs-test: file (NAME) -->`` marker before a block writes the block to NAME in the
 page's folder before the page's first block runs (the scene file a later command reads). Markers (``skip``,
 ``slow``, ``fragment``, ``file``) are described in ``tests/docs_blocks.py``; each needs its reason.
 """
@@ -18,10 +20,9 @@ page's folder before the page's first block runs (the scene file a later command
 from __future__ import annotations
 
 import contextlib
+import io
 import os
 import re
-import subprocess
-import sys
 import tomllib
 import warnings
 from pathlib import Path
@@ -83,10 +84,17 @@ def _inside(folder: Path):
         os.chdir(old)
 
 
-def _needs_shared(block: Block) -> None:
-    for name in re.findall(r"\.\./shared/data/[\w./-]+", block.text):
-        if not (SHARED / name.removeprefix("../shared/")).exists():
-            pytest.skip(f"{name} is absent")
+def _missing_shared(block: Block) -> str | None:
+    """The first file of ../shared/data that the block names, or that the page's files (``file`` markers) name for
+    its commands, and that is absent; None when all are there."""
+    texts = [block.text]
+    if block.language == "sh":
+        texts += [b.text for b in BLOCKS if b.page == block.page and b.marker == "file"]
+    for text in texts:
+        for name in re.findall(r"\.\./shared/data/[\w./-]*\w", text):
+            if not (SHARED / name.removeprefix("../shared/")).exists():
+                return name
+    return None
 
 
 def _run_python(block: Block, page: _Page) -> None:
@@ -97,18 +105,18 @@ def _run_python(block: Block, page: _Page) -> None:
 
 
 def _run_shell(block: Block, page: _Page) -> None:
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    """Each ``wecss ...`` line through ``wecss.cli.main(argv)`` in the page's folder: the command's own code, without
+    a process's start-up per line (the command line's process settings are tests/test_command_process.py's)."""
+    from wecss.cli import main
+
     for words in shell_commands(block.text):
         assert words[0] == "wecss", f"{block.id}: only wecss commands run in a test; got {' '.join(words)!r}"
-        done = subprocess.run(
-            [sys.executable, "-m", "wecss.cli", *words[1:]],
-            cwd=page.folder,
-            env=env,
-            capture_output=True,
-            text=True,
-            timeout=300,
-        )
-        assert done.returncode == 0, f"{block.id}: {' '.join(words)} failed:\n{done.stdout}\n{done.stderr}"
+        out, err = io.StringIO(), io.StringIO()
+        with _inside(page.folder), contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            with warnings.catch_warnings():
+                warnings.simplefilter("default")
+                status = main(words[1:])
+        assert status == 0, f"{block.id}: {' '.join(words)} exited {status}:\n{out.getvalue()}\n{err.getvalue()}"
 
 
 def _check_toml(block: Block, page: _Page) -> None:
@@ -154,14 +162,16 @@ def test_block_runs(block: Block, page_of) -> None:
     """The block runs (python), its commands succeed (sh) or its file is read (toml)."""
     if block.marker == "skip":
         pytest.skip(f"marked: {block.reason}")
-    _needs_shared(block)
+    missing = _missing_shared(block)
+    if missing is not None:
+        pytest.skip(f"{missing} is absent")
     page = page_of(block.page)
     # the earlier python blocks of the page first (a reader runs them first; with xdist they may be elsewhere)
     if block.language == "python":
         for earlier in RUNNABLE:
             if earlier.page != block.page or earlier.line >= block.line or earlier.language != "python":
                 continue
-            if earlier.marker == "skip" or earlier.line in page.done:
+            if earlier.marker == "skip" or earlier.line in page.done or _missing_shared(earlier) is not None:
                 if page.done.get(earlier.line) is False:
                     pytest.skip(f"the earlier block {earlier.id} failed")
                 continue
