@@ -217,3 +217,21 @@ def test_every_page_is_in_the_site_navigation() -> None:
     pages = {p.relative_to(ROOT / "docs").as_posix() for p in (ROOT / "docs").rglob("*.md")}
     assert pages - named == set(), f"pages missing from the nav of mkdocs.yml: {sorted(pages - named)}"
     assert named - pages == set(), f"mkdocs.yml names pages that do not exist: {sorted(named - pages)}"
+
+
+def test_generated_passages_have_their_markers_and_their_study() -> None:
+    """A passage a study writes between ``<!-- NAME: begin ... -->`` and ``<!-- NAME: end -->`` markers has both,
+    once and in order, and the study that writes it names the begin marker (a renamed marker would make the study
+    fail, or leave the page's numbers stale)."""
+    studies = "\n".join(p.read_text() for p in (ROOT / "studies").glob("*.py"))
+    found = 0
+    for path in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        text = path.read_text()
+        for begin in re.finditer(r"<!-- ([\w-]+): begin[^>]*-->", text):
+            found += 1
+            name, marker = begin[1], begin[0]
+            end = f"<!-- {name}: end -->"
+            assert text.count(marker) == 1 and text.count(end) == 1, f"{path.name}: {name}'s markers not once each"
+            assert text.index(end) > begin.start(), f"{path.name}: {name}'s end marker before its begin"
+            assert marker in studies, f"{path.name}: no study under studies/ writes {marker!r}"
+    assert found >= 1
