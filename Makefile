@@ -8,12 +8,12 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test test-all lint typecheck studies-quick clean
+.PHONY: demo test test-all lint typecheck docs studies-quick clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,dask,fatigue]"
+	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,dask,fatigue,docs]"
 	touch $(STAMP)
 
 demo: $(STAMP)
@@ -35,10 +35,15 @@ lint: $(STAMP)
 typecheck: $(STAMP)
 	$(VENV)/bin/mypy
 
+# the documentation site (mkdocs.yml: the guide docs/*.md and the API reference from the docstrings) into site/;
+# --strict: a warning (a broken link, a page left out of the navigation, a docstring griffe cannot parse) fails
+docs: $(STAMP)
+	$(PY) -m mkdocs build --strict --site-dir site
+
 # every studies/[a-z]*.py with --quick, two at a time (CI has two cores), stopping at the first failure
 # (studies/_quick.py finds them)
 studies-quick: $(STAMP)
 	$(PY) studies/_quick.py --jobs 2
 
 clean:
-	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache
+	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache site

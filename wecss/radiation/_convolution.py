@@ -20,6 +20,9 @@ still carries the low-frequency added mass (1-DOF test: 1.2e-2 RMS error with 1x
 class RadiationConvolution:
     """Convolution of the radiation kernel with the velocity history.
 
+    The buffer keeps two copies of the window so that the newest N velocities are always one contiguous
+    slice (no copying per step).
+
     Parameters
     ----------
     irf : ImpulseResponse
@@ -28,9 +31,6 @@ class RadiationConvolution:
     memory : float, optional
         Length of the memory [s] (default: MEMORY_FACTOR times the longest truncation time of the kernel's
         entries, at most the kernel's length).
-
-    The buffer keeps two copies of the window so that the newest N velocities are always one contiguous
-    slice (no copying per step).
     """
 
     def __init__(self, irf: ImpulseResponse, dt: float, memory: float | None = None) -> None:

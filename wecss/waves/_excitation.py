@@ -46,7 +46,7 @@ class ExcitationModel:
     outside_share: float = 0.0
 
     def force(self, time: np.ndarray, *, chunk: int = 2_000_000) -> np.ndarray:
-        """Excitation forces (n_dof, n_times) at ``time`` [s] [N, N m]."""
+        """Excitation forces [N, N m], (n_dof, n_times), at ``time`` [s]."""
         time = np.atleast_1d(np.asarray(time, dtype=float))
         out = np.real(evaluate(self.coefficients, self.omega, time, chunk=chunk))
         if self.ramp is not None:
