@@ -567,7 +567,7 @@ class Outputs:
 
     @property
     def probe_points(self) -> tuple[tuple[float, float], ...]:
-        """The points [x, y] [m] of ``probes``, in order."""
+        """The points (x, y) [m] of ``probes``, in order."""
         probes = self.probes
         return tuple(probes.values()) if isinstance(probes, dict) else tuple(probes)
 
