@@ -3,12 +3,15 @@ what is accepted (``wecss`` exits 2 with one line, no traceback)."""
 
 from __future__ import annotations
 
+import traceback
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import pytest
 
 from wecss.cli import main
-from wecss.control import compile_scene
+from wecss.control import ControlContext, Controller, compile_scene
 from wecss.devices import Device, DeviceSpecError
 from wecss.scene import Scene, SceneError
 from wecss.sweep import Sweep, prepare_folder
@@ -95,3 +98,54 @@ def test_a_corrupt_sweep_json_in_a_sweep_folder_is_named_with_what_to_do(tmp_pat
     (folder / "sweep.json").write_bytes(content)
     with pytest.raises(ValueError, match=r"sweep.json: not a readable sweep record .*give a new folder, or remove"):
         prepare_folder(sweep, folder)
+
+
+class _SetupFails(Controller):
+    """A user controller whose ``setup`` fails deep in its own code (a helper it calls)."""
+
+    needs_state = False
+
+    def setup(self, context: ControlContext) -> None:
+        self._table(context.n_pto)
+
+    def _table(self, n: int) -> None:
+        raise ValueError(f"table of {n} PTOs has no row for the sea state")
+
+    def compute(self, t: float, measurement: Any) -> np.ndarray:
+        return np.zeros(1)
+
+
+_REGULAR = {"kind": "regular", "height": 0.02, "period": 1.2, "duration": 2.0, "ramp": 0.5}
+
+
+def test_an_error_inside_a_controllers_setup_keeps_its_traceback_and_says_where():
+    scene = Scene.from_dict({"device": {"name": "m4-111"}, "sea": _REGULAR, "radiation": {"method": "none"}})
+    with pytest.raises(SceneError) as info:
+        compile_scene(scene, controller=_SetupFails())
+    message = str(info.value)
+    assert message.startswith("controller _SetupFails: table of 1 PTOs has no row for the sea state (raised in _table")
+    assert f"at {__file__}:" in message
+    cause = info.value.__cause__
+    assert isinstance(cause, ValueError)  # chained: its traceback reaches the controller's helper
+    assert [f.name for f in traceback.extract_tb(cause.__traceback__)][-2:] == ["setup", "_table"]
+
+
+def test_mpc_with_the_frequency_solver_is_told_to_use_a_runner_that_calls_it_not_state_space():
+    """MPC plans on the state-space model already: the frequency domain refuses it because it never calls a
+    controller during the run (it needs constant linear gains); the runners named instead are those that call it."""
+    scene = Scene.from_dict(
+        {
+            "device": {"name": "m4-111"},
+            "sea": _REGULAR,
+            "controller": {"name": "mpc"},
+            "solver": {"method": "frequency"},
+        }
+    )
+    with pytest.raises(SceneError) as info:
+        compile_scene(scene)
+    message = str(info.value)
+    assert "'frequency' needs a controller with linear gains" in message
+    assert "it never calls the controller during the run; MPC has none" in message
+    named = message.split("one of ")[1].split(" (")[0].split(", ")
+    assert "linear" in named and "beeman" in named and "frequency" not in named and "reference" not in named
+    assert "state space" not in message and "state_space" not in message
