@@ -32,9 +32,7 @@ def _m4_134(method: str, dt: str, duration: float) -> Scene:
 
 def _drift(ds: Any, body: str) -> float:
     """The body's x mean over the last tenth of the record minus that over the first, from its saved positions."""
-    x = ds["body_position"].sel(body=body, axis="x").values if "axis" in ds["body_position"].coords else None
-    if x is None:
-        x = ds["body_position"].sel(body=body).values[:, 0]
+    x = ds["body_position"].sel(body=body).isel(axis=0).values
     k = x.size // 10
     return float(x[-k:].mean() - x[:k].mean())
 
@@ -124,15 +122,17 @@ class _Push(Controller):
         return np.full(self.n, 0.004)
 
 
-def test_a_body_pushed_by_a_steady_force_with_nothing_restoring_it_is_noted_as_physical(tmp_path: Path):
+@pytest.mark.parametrize("streamed", [False, True])
+def test_a_body_pushed_by_a_steady_force_with_nothing_restoring_it_is_noted_as_physical(tmp_path: Path, streamed):
     """A float sliding in surge (no restoring) under a constant force: x grows as F t^2 / 2 M whatever the step;
-    the note finds no numerical part and advises a mooring."""
+    the note finds no numerical part and advises a mooring (also in a result streamed to its file)."""
     spec = tmp_path / "surge.toml"
     spec.write_text(SURGE_FLOAT)
     sea = {"kind": "regular", "height": 0.01, "period": 1.2, "duration": 20.0, "ramp": 1.2}
     scene = Scene.from_dict({"device": {"name": str(spec)}, "sea": sea, "radiation": {"method": "none"},
                              "outputs": {"variables": ["motion"]}})  # fmt: skip
-    ds = simulate(scene, controller=_Push())
+    ds = simulate(scene, controller=_Push(), path=tmp_path / "r.nc" if streamed else None)
+    assert (tmp_path / "r.nc").is_file() is streamed and "run_status" not in ds.attrs
     notes = str(ds.attrs["notes"])
     total, numerical, physical = _split(notes, "float_1")
     x = ds["displacement"].values[:, 0]
@@ -145,3 +145,4 @@ def test_a_body_pushed_by_a_steady_force_with_nothing_restoring_it_is_noted_as_p
         in notes
     )
     assert "integrator's error" not in notes
+    ds.close()

@@ -299,11 +299,13 @@ def check_sea(compiled: CompiledScene) -> None:
         return
     k = float(wavenumber(np.array([omega]), compiled.hydro.water_depth, compiled.hydro.g)[0])
     wavelength = 2 * np.pi / k
+    water = float(compiled.hydro.water_depth)
+    depth = f"depth {water:.4g} m" if np.isfinite(water) else "deep water"
     if height > BREAKING_STEEPNESS * wavelength:
         hint = "a record in cm or mm instead of m?" if not given else "a height in the wrong unit? 2 cm is 0.02"
         raise SceneError(
             f"{field} = {height:.4g} m is {height / wavelength:.3g} times the wavelength {wavelength:.4g} m at the "
-            f"(peak) period {2 * np.pi / omega:.4g} s (depth {compiled.hydro.water_depth:.4g} m); accepted: at most "
+            f"(peak) period {2 * np.pi / omega:.4g} s ({depth}); accepted: at most "
             f"1/7 of it, {BREAKING_STEEPNESS * wavelength:.4g} m (waves break beyond H / lambda = 1/7): {hint}"
         )
 
