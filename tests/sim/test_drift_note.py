@@ -146,3 +146,28 @@ def test_a_body_pushed_by_a_steady_force_with_nothing_restoring_it_is_noted_as_p
     )
     assert "integrator's error" not in notes
     ds.close()
+
+
+class _Counting(_Push):
+    """The steady push, counting its calls (the result's report is the run's, not the re-run's)."""
+
+    def setup(self, context: ControlContext) -> None:
+        super().setup(context)
+        self.calls, self.dt = 0, context.control_period
+
+    def compute(self, t: float, measurement: Any) -> np.ndarray:
+        self.calls += 1
+        return super().compute(t, measurement)
+
+
+def test_the_re_run_uses_a_copy_of_a_given_controller(tmp_path: Path):
+    spec = tmp_path / "surge.toml"
+    spec.write_text(SURGE_FLOAT)
+    sea = {"kind": "regular", "height": 0.01, "period": 1.2, "duration": 20.0, "ramp": 1.2}
+    scene = Scene.from_dict({"device": {"name": str(spec)}, "sea": sea, "radiation": {"method": "none"},
+                             "outputs": {"variables": ["motion"]}})  # fmt: skip
+    controller = _Counting()
+    ds = simulate(scene, controller=controller)
+    assert "split by a re-run at dt/2" in str(ds.attrs["notes"])  # the re-run was made
+    assert controller.dt == pytest.approx(scene.dt)  # set up for the run, not for the re-run at dt/2
+    assert controller.calls == pytest.approx(20.0 / scene.dt, abs=2)  # the run's calls only

@@ -12,6 +12,7 @@ twice the run; runs longer than :data:`MAX_CHECK_STEPS` steps are not re-run (th
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 
 import numpy as np
@@ -42,8 +43,14 @@ def drift_check(controlled: ControlledScene, drift: np.ndarray) -> DriftCheck | 
         solver=dataclasses.replace(scene.solver, dt=dt / 2, tolerance=None),
         outputs=dataclasses.replace(scene.outputs, variables=("motion",), every=2 * scene.outputs.every),
     )
+    controller = None  # the scene's controller section makes a new one
+    if controlled.controller_given:  # a copy: the run's own controller keeps its state for the result's report
+        try:
+            controller = copy.deepcopy(controlled.controller)
+        except Exception as err:  # any object may refuse to be copied
+            return DriftCheck(dt, order, None, f"the given controller could not be copied for a re-run: {err}")
     try:
-        rerun = compile_scene(half, controlled.controller if controlled.controller_given else None)
+        rerun = compile_scene(half, controller)
         record = rerun.scene.runner.run(rerun)
     except SimulationDiverged as err:
         return DriftCheck(dt, order, None, f"the re-run at dt/2 diverged: {str(err).split(';')[0]}")
