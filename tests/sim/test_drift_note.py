@@ -171,3 +171,23 @@ def test_the_re_run_uses_a_copy_of_a_given_controller(tmp_path: Path):
     assert "split by a re-run at dt/2" in str(ds.attrs["notes"])  # the re-run was made
     assert controller.dt == pytest.approx(scene.dt)  # set up for the run, not for the re-run at dt/2
     assert controller.calls == pytest.approx(20.0 / scene.dt, abs=2)  # the run's calls only
+
+
+def test_a_run_too_long_to_re_run_says_its_drift_was_not_split(monkeypatch):
+    from wecss.control import compile_scene
+    from wecss.sim import _drift_check
+    from wecss.sim._guards import drift_note
+
+    sea = {"kind": "regular", "height": 0.02, "period": 1.2, "duration": 6.0, "ramp": 1.2}
+    compiled = compile_scene(
+        Scene.from_dict({"device": {"name": "m4-111"}, "sea": sea, "radiation": {"method": "none"}})
+    )
+    drift = np.zeros((len(compiled.device.model.body_names), 2))
+    drift[0, 0] = 1.0  # float_1 (the planar base) 1 m along x, 7.5 times its size
+    monkeypatch.setattr(_drift_check, "MAX_CHECK_STEPS", compiled.n_steps - 1)
+    check = _drift_check.drift_check(compiled, drift)
+    assert check is not None and check.half is None
+    note = drift_note(compiled, drift, check)
+    assert f"its numerical part was not estimated (the run has {compiled.n_steps} steps, more than " in note
+    assert "solver.method 'rk4' tells it from the physics; if it is physical, nothing restores it" in note
+    assert _drift_check.drift_check(compiled, 0.01 * drift) is None  # 1 cm: no note, no re-run
