@@ -176,7 +176,8 @@ def test_the_re_run_uses_a_copy_of_a_given_controller(tmp_path: Path):
 def test_a_run_too_long_to_re_run_says_its_drift_was_not_split(monkeypatch):
     from wecss.control import compile_scene
     from wecss.sim import _drift_check
-    from wecss.sim._guards import drift_note
+    from wecss.sim._drift import drift_note
+    from wecss.sim._guards import body_sizes
 
     sea = {"kind": "regular", "height": 0.02, "period": 1.2, "duration": 6.0, "ramp": 1.2}
     compiled = compile_scene(
@@ -187,7 +188,7 @@ def test_a_run_too_long_to_re_run_says_its_drift_was_not_split(monkeypatch):
     monkeypatch.setattr(_drift_check, "MAX_CHECK_STEPS", compiled.n_steps - 1)
     check = _drift_check.drift_check(compiled, drift)
     assert check is not None and check.half is None
-    note = drift_note(compiled, drift, check)
+    note = drift_note(list(compiled.device.model.body_names), body_sizes(compiled), drift, check)
     assert f"its numerical part was not estimated (the run has {compiled.n_steps} steps, more than " in note
     assert "solver.method 'rk4' tells it from the physics; if it is physical, nothing restores it" in note
     assert _drift_check.drift_check(compiled, 0.01 * drift) is None  # 1 cm: no note, no re-run

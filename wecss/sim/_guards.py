@@ -11,8 +11,6 @@ run, which stays a valid solution of the equations it integrates.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import xarray as xr
 
@@ -21,6 +19,8 @@ from ..compiled.kernels import poses
 from ..linear import cartesian_mass, equilibrium_maps
 from ..scene import EXPLICIT_RUNNER, SceneError
 from ..waves import wavenumber
+from ._drift import DRIFT_LIMIT as DRIFT_LIMIT
+from ._drift import DriftCheck, drift_note
 from ._rk4_check import check_rk4 as check_rk4_region
 
 #: Fewer steps than this per period 2 pi / |s| of the fastest mode are noted (an accurate step resolves it).
@@ -34,9 +34,6 @@ HEIGHT_LIMIT = 1.0
 TRANSLATION_LIMIT = 0.5
 #: A body's largest rotation from its equilibrium above this angle [rad] (20 degrees) is noted.
 ROTATION_LIMIT = float(np.deg2rad(20.0))
-#: A body whose horizontal mean position moves by more than this multiple of its size V^(1/3) between the first and
-#: the last tenth of the saved record is noted as drifting.
-DRIFT_LIMIT = 1.0
 
 
 def _modes(compiled: CompiledScene, damped: bool = True, pto_springs: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -225,7 +222,7 @@ def step_notes(compiled: CompiledScene) -> list[str]:
     ]
 
 
-def _sizes(compiled: CompiledScene) -> dict[str, float]:
+def body_sizes(compiled: CompiledScene) -> dict[str, float]:
     """Body name -> V^(1/3) [m] for the bodies the database has a positive displaced volume for."""
     ds = compiled.hydro.dataset
     if "displaced_volume" not in ds or "body" not in ds.displaced_volume.dims:
@@ -254,7 +251,7 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
                 f"steep sea: height / wavelength at the (peak) period = {steepness:.3g} (above "
                 f"{STEEPNESS_LIMIT:.3g}); linear wave theory and linear hydrodynamics lose accuracy"
             )
-    sizes = _sizes(compiled)
+    sizes = body_sizes(compiled)
     if sizes:
         name, size = min(sizes.items(), key=lambda item: item[1])
         if hs > HEIGHT_LIMIT * size:
@@ -407,7 +404,7 @@ class MotionSummary:
             return []
         compiled = self.compiled
         names = list(compiled.device.model.body_names)
-        sizes = _sizes(compiled)
+        sizes = body_sizes(compiled)
         angle, shift = self.angle, self.shift
         notes = []
         big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
@@ -427,7 +424,7 @@ class MotionSummary:
                 f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
                 f"{', '.join(big)}; linear hydrodynamics lose accuracy"
             )
-        note = drift_note(compiled, self.drift(), self.check)
+        note = drift_note(names, sizes, self.drift(), self.check)
         return notes + ([note] if note else [])
 
     def drift(self) -> np.ndarray:
@@ -436,103 +433,6 @@ class MotionSummary:
         if self.n_rows < 2:
             return np.zeros_like(self.head)
         return (self.tail - self.head) / self.tenth * unrestrained_directions(self.compiled)
-
-
-@dataclass(frozen=True)
-class DriftCheck:
-    """The drift of a re-run of a drifting run at half its step (``wecss.sim`` makes it when the drift note fires):
-    with the run's own drift it splits the drift into the integrator's error and the physics (Richardson).
-
-    Attributes
-    ----------
-    dt : float
-        The run's step [s] (the re-run's is dt / 2).
-    order : int
-        The runner's order p: its drift error goes as dt^p.
-    half : numpy.ndarray or None
-        (n_body, 2) [m]: the re-run's drift (as :meth:`MotionSummary.drift`); None when it could not be made.
-    reason : str
-        Why there is no re-run (``half`` None): the run too long, the re-run diverged.
-    """
-
-    dt: float
-    order: int
-    half: np.ndarray | None
-    reason: str = ""
-
-
-def drifting(compiled: CompiledScene, drift: np.ndarray) -> bool:
-    """Whether a body's ``drift`` (n_body, 2) [m] passes :data:`DRIFT_LIMIT` times its size (the drift note's
-    criterion)."""
-    sizes = _sizes(compiled)
-    names = list(compiled.device.model.body_names)
-    norms = np.linalg.norm(drift, axis=-1)
-    return any(n in sizes and d > DRIFT_LIMIT * sizes[n] for n, d in zip(names, norms, strict=True))
-
-
-def record_drift(compiled: CompiledScene, q: np.ndarray) -> np.ndarray:
-    """:meth:`MotionSummary.drift` of the saved configurations ``q`` (n_t, nq), from the poses of their first and
-    last tenths only."""
-    summary = MotionSummary(compiled, q.shape[0])
-    tenth = summary.tenth
-    if q.shape[0] <= 2 * tenth:
-        summary.add(q)
-    else:
-        summary.add(q[:tenth])
-        summary.seen = q.shape[0] - tenth  # the middle rows count for neither tenth
-        summary.add(q[-tenth:])
-    return summary.drift()
-
-
-MOORING_ADVICE = (
-    "nothing restores it: give the device a linear mooring ([[moorings]] in its spec, docs/byo-bem.md) or a "
-    "solver.translation_bound"
-)
-
-
-def drift_note(compiled: CompiledScene, drift: np.ndarray, check: DriftCheck | None) -> str:
-    """The drift note (empty when no body drifts past :data:`DRIFT_LIMIT` x its size): the bodies and their drift;
-    with a re-run at half the step (``check``), its numerical part, Richardson's (d_h - d_h/2) 2^p / (2^p - 1) for
-    a runner of order p, and its physical part, the rest (the mean wave force, or the start from rest, on a body
-    nothing restores), each with the advice that fits it."""
-    sizes = _sizes(compiled)
-    names = list(compiled.device.model.body_names)
-    norms = np.linalg.norm(drift, axis=-1)
-    far = [i for i, (n, d) in enumerate(zip(names, norms, strict=True)) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
-    if not far:
-        return ""
-    head = f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run"
-    moved = ", ".join(f"{names[i]} {norms[i]:.3g} m" for i in far)
-    if check is None:
-        return f"{head} ({moved}); {MOORING_ADVICE}"
-    if check.half is None:
-        return (
-            f"{head} ({moved}); its numerical part was not estimated ({check.reason}): a run at half the step or "
-            f"with solver.method 'rk4' tells it from the physics; if it is physical, {MOORING_ADVICE}"
-        )
-    factor = 2.0**check.order / (2.0**check.order - 1.0)
-    numerical = (drift - check.half) * factor
-    physical = drift - numerical
-    parts = ", ".join(
-        f"{names[i]} {norms[i]:.3g} m: numerical {np.linalg.norm(numerical[i]):.3g} m, physical "
-        f"{np.linalg.norm(physical[i]):.3g} m"
-        for i in far
-    )
-    text = (
-        f"{head} ({parts}; split by a re-run at dt/2 = {check.dt / 2:.4g} s, whose drift is the physical part plus "
-        f"the numerical one divided by 2^{check.order}: numerical = (d(dt) - d(dt/2)) x {factor:.4g})"
-    )
-    advice = []
-    if any(np.linalg.norm(numerical[i]) > 0.5 * DRIFT_LIMIT * sizes[names[i]] for i in far):
-        advice.append(
-            f"the numerical part is the integrator's error at dt = {check.dt:.4g} s: give a smaller solver.dt "
-            "(or solver.tolerance) or use solver.method 'rk4'"
-        )
-    if any(np.linalg.norm(physical[i]) > DRIFT_LIMIT * sizes[names[i]] for i in far):
-        advice.append(f"the physical part is a drift of the body itself: {MOORING_ADVICE}")
-    else:
-        advice.append(f"the physical part is below {DRIFT_LIMIT:g} x the body size: no mooring is needed for it")
-    return f"{text}; {'; '.join(advice)}"
 
 
 #: Singular values of the static stiffness below this fraction of the largest are free directions.
@@ -568,7 +468,7 @@ def translation_bound(compiled: CompiledScene) -> float:
     given = compiled.scene.solver.translation_bound
     if given is not None:
         return float(given)
-    sizes = _sizes(compiled)
+    sizes = body_sizes(compiled)
     return TRANSLATION_BOUND_SIZES * max(sizes.values()) if sizes else float("inf")
 
 

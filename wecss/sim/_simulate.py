@@ -18,8 +18,8 @@ from ..provenance import with_relative_paths
 from ..scene import Scene
 from ._alpha import with_elastic_choice
 from ._dataset import build_result
-from ._drift_check import drift_check
-from ._guards import check_sea, record_drift
+from ._drift_check import drift_check, record_drift
+from ._guards import check_sea
 from ._stream import ResultStream, streamable
 from ._tolerance import choose_step
 
@@ -67,7 +67,7 @@ def simulate(
     pilot runs); the result's ``scene`` attribute is the scene that ran (its method and step), and its attributes
     ``solver_tolerance``, ``tolerance_estimate`` and ``tolerance_choice`` record the choice.
 
-    A run whose bodies drift (the drift note, ``wecss.sim._guards``) is run again at half the step, its motion only
+    A run whose bodies drift (the drift note, ``wecss.sim._drift``) is run again at half the step, its motion only
     (about twice the run's time; not for runs over ``MAX_CHECK_STEPS`` steps): the note then says which part of the
     drift is the integrator's error and which is physical (``wecss.sim._drift_check``).
 
