@@ -3,7 +3,7 @@ Beeman at the default step drifted +0.159 m in surge on m4-134 in Hs 0.16 m over
 model drifted -0.035 m; its note blamed the missing mooring).
 
 When a run's drift note fires (a body's horizontal mean position moves by more than ``DRIFT_LIMIT`` x its size,
-``wecss.sim._guards``), the scene is run again at dt/2, with its motion only and every other saved row, and the
+``wecss.sim._drift``), the scene is run again at dt/2, with its motion only and every other saved row, and the
 drift of that run is kept (:class:`DriftCheck`): for a runner of order p the drift at a step h is the physical
 drift plus c h^p, so the numerical part at dt is (d(dt) - d(dt/2)) 2^p / (2^p - 1) and the rest is physical
 (Richardson, as the pilot runs of ``solver.tolerance`` estimate the statistics' error). The re-run costs about
