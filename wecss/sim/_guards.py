@@ -291,7 +291,13 @@ def check_sea(compiled: CompiledScene) -> None:
         field = f"the {sea.kind} sea's significant height 4 sqrt(m0)" + (
             f" (sea.file {sea.file!r})" if sea.file else ""
         )
-        omega = float(np.asarray(waves.omega).ravel()[int(np.argmax(amplitude.ravel()))])
+        frequencies = np.asarray(waves.omega).ravel()
+        energy = amplitude**2
+        if energy.size != frequencies.size:  # components spread over directions too: the energy per frequency
+            if energy.size % frequencies.size:
+                return
+            energy = energy.reshape(-1, frequencies.size).sum(axis=0)
+        omega = float(frequencies[int(np.argmax(energy.ravel()))])
     if not omega > 0:
         return
     k = float(wavenumber(np.array([omega]), compiled.hydro.water_depth, compiled.hydro.g)[0])
