@@ -149,3 +149,17 @@ def test_mpc_with_the_frequency_solver_is_told_to_use_a_runner_that_calls_it_not
     named = message.split("one of ")[1].split(" (")[0].split(", ")
     assert "linear" in named and "beeman" in named and "frequency" not in named and "reference" not in named
     assert "state space" not in message and "state_space" not in message
+
+
+@pytest.mark.parametrize("content", [b'{"error": "Simulation', b"\xff\xfe", b'{"no": 1}'])
+def test_a_damaged_failure_record_of_a_sweep_case_is_named_in_the_combined_result(tmp_path, content):
+    from wecss.sweep import case_paths, combine
+
+    sweep = Sweep.of(None, {"sea.period": [1.0, 1.2]})
+    case = sweep.cases[0]
+    _, failure = case_paths(tmp_path, case)
+    failure.write_bytes(content)
+    ds = combine(sweep, tmp_path)
+    error = str(ds["error"].sel({"sea.period": 1.0}).values)
+    assert error.startswith(f"the failure record '{failure}' is unreadable (") and error.endswith("run the case again")
+    assert list(ds["status"].values) == ["failed", "pending"]
