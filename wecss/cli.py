@@ -19,7 +19,8 @@ each mode's strain and kinetic energy; ``--png FILE`` plots the mode shapes.
 ``--retry-failed`` runs the failed cases again.
 
 Exit status: 0 done, 1 a sweep with failed cases, 2 bad input (one line, no traceback; also an output that would
-overwrite an input of the run), 3 a diverged run, 130 after Ctrl-C, 143 after SIGTERM.
+overwrite an input of the run), 3 a diverged run, 4 an output file that could not be written (a full disk: the
+message names the file and what became of it), 130 after Ctrl-C, 143 after SIGTERM.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ from typing import Any
 
 from . import __version__, command_process
 from .dask_free import refusal_hint
-from .files import refuse_overwrite
+from .files import WriteFailed, refuse_overwrite
 from .interrupts import Terminated, sigterm_raises
 
 
@@ -402,16 +403,27 @@ def _storage_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
+EXIT_WRITE_FAILED: int = 4
+"""The exit status of a command whose output file could not be written (``wecss.files.WriteFailed``)."""
+
+EXIT_STATUSES: str = (
+    "exit status: 0 done; 1 a sweep with failed cases; 2 bad input (one line, no traceback); 3 a diverged run; "
+    f"{EXIT_WRITE_FAILED} an output file could not be written (a full disk); 130 after Ctrl-C; 143 after SIGTERM"
+)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``wecss`` command."""
-    parser = argparse.ArgumentParser(prog="wecss", description="Multi-body wave energy converter toolkit.")
+    parser = argparse.ArgumentParser(
+        prog="wecss", description="Multi-body wave energy converter toolkit.", epilog=EXIT_STATUSES
+    )
     parser.add_argument("--version", action="version", version=f"wecss {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     info = sub.add_parser("info", help="describe a device, a shipped hydrodynamic database or a netCDF file")
     info.add_argument(
         "target", nargs="?", help="device or database name, device spec (.toml), database or result (.nc)"
     )
-    run = sub.add_parser("run", help="simulate a scene (default: the embedded M4 134 scene)")
+    run = sub.add_parser("run", help="simulate a scene (default: the embedded M4 134 scene)", epilog=EXIT_STATUSES)
     run.add_argument("scene", nargs="?", help="scene file (.toml); without it the embedded default runs")
     run.add_argument(
         "--from",
@@ -527,6 +539,9 @@ def _command(args: argparse.Namespace) -> int:
         hint = refusal_hint(err)
         print(f"wecss: error: {err}" + (f"; {hint}: give run --allow-dask" if hint else ""), file=sys.stderr)
         return 2
+    except WriteFailed as err:  # before OSError: a failed write is no bad input (nor a diverged run)
+        print(f"wecss: write failed: {err}", file=sys.stderr)
+        return EXIT_WRITE_FAILED
     except (ValueError, FileNotFoundError) as err:
         print(f"wecss: error: {err}", file=sys.stderr)
         return 2

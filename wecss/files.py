@@ -1,4 +1,5 @@
-"""Output files that would overwrite an input of the run (floor 0: paths only).
+"""Output files that would overwrite an input of the run, and an output that could not be written (floor 0: paths
+only).
 
 A run reads files (the scene, the device spec, the hydrodynamic database, a measured elevation record, the
 radiation-fit cache) and writes others (the result, its picture, a sweep's case files). :func:`refuse_overwrite`
@@ -11,6 +12,20 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 from pathlib import Path
+
+
+class WriteFailed(OSError):
+    """An output file could not be written (a full disk, a device error): the message names the file, says what the
+    system or the netCDF library said and what became of the file; ``wecss`` exits with status 4 for it
+    (``wecss.netcdf.write_failure`` makes it). ``errno`` is the system's code (EIO for the netCDF library's errors,
+    which carry none) and ``filename`` the file."""
+
+    def __init__(self, message: str, code: int, filename: str) -> None:
+        super().__init__(message)
+        self.errno, self.filename = code, filename
+
+    def __str__(self) -> str:
+        return str(self.args[0])
 
 
 class OverwriteError(ValueError):

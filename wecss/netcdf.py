@@ -12,7 +12,9 @@ next write to the same target, whole or part by part.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import shutil
 import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -20,6 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import xarray as xr
 
+from .files import WriteFailed as WriteFailed
 from .interrupts import interrupts_held
 
 if TYPE_CHECKING:
@@ -28,6 +31,28 @@ if TYPE_CHECKING:
 COMPLEX_DIM = "complex"
 COMPLEX_COORD = ("re", "im")
 _COMPLEX_FLAG = "wecss_complex"
+
+
+#: Free space [bytes] below which a failed write is put down to a full disk.
+FULL_DISK_BYTES: int = 64 * 2**20
+
+
+def write_failure(path: Path, err: BaseException, what: str) -> WriteFailed:
+    """The :class:`WriteFailed` of a write to ``path`` that raised ``err`` (an OSError, or the netCDF library's
+    RuntimeError such as "NetCDF: HDF error", which carries no errno): the disk is named full when the error says so
+    (ENOSPC, EDQUOT) or when its folder has less than :data:`FULL_DISK_BYTES` free; ``what`` says what became of
+    the file."""
+    code = getattr(err, "errno", None)
+    try:
+        free: int | None = shutil.disk_usage(path.parent if str(path.parent) else ".").free
+    except OSError:
+        free = None
+    if code in (errno.ENOSPC, errno.EDQUOT) or (free is not None and free < FULL_DISK_BYTES):
+        cause = "the disk is full" + (f" ({free} bytes free in {str(path.parent)!r})" if free is not None else "")
+    else:
+        cause = "the write failed"
+    message = f"writing {str(path)!r} failed: {cause} ({type(err).__name__}: {err}); {what}"
+    return WriteFailed(message, code or errno.EIO, str(path))
 
 
 def split_complex(ds: xr.Dataset) -> xr.Dataset:
@@ -114,6 +139,8 @@ def write_netcdf(
         If the target folder does not exist.
     ValueError
         For a ``compress`` level outside 0-9.
+    WriteFailed
+        If the write fails (a full disk: the message says so); the target is left as it was.
     """
     target = _target(path)
     folder = target.parent
@@ -127,7 +154,10 @@ def write_netcdf(
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.", suffix=".tmp", dir=folder)
         os.close(fd)
         try:
-            split.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+            try:
+                split.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+            except (OSError, RuntimeError) as err:
+                raise write_failure(target, err, "nothing was written (any previous file there is unchanged)") from err
             umask = os.umask(0)
             os.umask(umask)
             os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes the file private; give it the usual permissions
@@ -187,22 +217,40 @@ class AppendingWriter:
         self.length, self.dim, self.compress, self.float32 = length, dim, compress, float32
         self.status_attr = status_attr
         self.rows = 0
+        self.failed = False  # a write failed (the partial file's last part may be incomplete)
         self._nc: netCDF4.Dataset | None = None
 
     def append(self, part: xr.Dataset, status: str) -> None:
         """Write the next rows: ``part``'s variables on the dimension (the first part also writes every other
         variable, the coordinates and the global attributes of ``part``)."""
         with interrupts_held():
-            if self._nc is None:
-                self._create(part, status)
-            else:
-                k = part.sizes[self.dim]
-                for name, variable in part.variables.items():
-                    if self.dim in variable.dims:
-                        self._nc.variables[str(name)][self.rows : self.rows + k] = variable.values
-                self._nc.setncattr(self.status_attr, status)
-                self._nc.sync()
+            try:
+                if self._nc is None:
+                    self._create(part, status)
+                else:
+                    k = part.sizes[self.dim]
+                    for name, variable in part.variables.items():
+                        if self.dim in variable.dims:
+                            self._nc.variables[str(name)][self.rows : self.rows + k] = variable.values
+                    self._nc.setncattr(self.status_attr, status)
+                    self._nc.sync()
+            except (OSError, RuntimeError) as err:
+                self.failed = True
+                if self._nc is None:  # the first part: a half-made file holds nothing of use
+                    with contextlib.suppress(OSError):
+                        self.partial.unlink()
+                raise write_failure(self.partial, err, self._failed_state()) from err
             self.rows += part.sizes[self.dim]
+
+    def _failed_state(self) -> str:
+        """What a failed append left in the partial file."""
+        if self._nc is None:
+            return "nothing of the run was kept (the half-made partial file was removed)"
+        return (
+            f"the partial file keeps the first {self.rows} of {self.length} rows whole; its status attribute "
+            f"{self.status_attr!r} is updated to say the run stopped if the disk lets it (else it still says how "
+            "far the last whole part got)"
+        )
 
     def _create(self, part: xr.Dataset, status: str) -> None:
         import netCDF4
@@ -231,6 +279,37 @@ class AppendingWriter:
         if self._nc is None:
             raise RuntimeError(f"nothing was written to {str(self.partial)!r}")
         split = split_complex(rest)
+        try:
+            self._finish(split)
+        except (OSError, RuntimeError) as err:
+            self.failed = True
+            self._mark_unfinished()
+            raise write_failure(
+                self.partial,
+                err,
+                f"the partial file keeps the run's {self.rows} rows; its statistics and attributes are missing (its "
+                f"status attribute {self.status_attr!r} says so if the disk let it be written)",
+            ) from err
+        return self.target
+
+    def _mark_unfinished(self) -> None:
+        """After a failed :meth:`finish`: the partial file's status says the run ended but the file is unfinished
+        (where the disk lets it be written)."""
+        import netCDF4
+
+        with contextlib.suppress(OSError, RuntimeError):
+            if self._nc is not None:
+                self._nc.close()
+            self._nc = None
+            with netCDF4.Dataset(self.partial, "a") as nc:
+                nc.setncattr(
+                    self.status_attr,
+                    f"stopped: all {self.rows} of {self.length} rows written, but writing the statistics and "
+                    "attributes failed (unfinished file)",
+                )
+
+    def _finish(self, split: xr.Dataset) -> None:
+        assert self._nc is not None
         with interrupts_held():
             for name in self._nc.ncattrs():  # the parts' attributes give way to the whole's (in its order)
                 self._nc.delncattr(name)
@@ -243,7 +322,6 @@ class AppendingWriter:
                 encoding=storage_encoding(split, compress=self.compress, float32=self.float32) or None,
             )
             os.replace(self.partial, self.target)
-        return self.target
 
     def stop(self, status: str) -> Path | None:
         """Leave the partial file with the last ``status`` (a failure or an interrupt); returns it (None when no
@@ -251,8 +329,12 @@ class AppendingWriter:
         if self._nc is None:
             return None
         with interrupts_held():
-            self._nc.setncattr(self.status_attr, status)
-            self._nc.close()
+            try:
+                self._nc.setncattr(self.status_attr, status)
+                self._nc.close()
+            except (OSError, RuntimeError):  # the disk that stopped the run may refuse the status too
+                with contextlib.suppress(OSError, RuntimeError):
+                    self._nc.close()
         self._nc = None
         return self.partial
 

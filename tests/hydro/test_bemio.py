@@ -196,3 +196,22 @@ def test_missing_h5py_gives_the_install_hint(monkeypatch: pytest.MonkeyPatch, tm
     monkeypatch.setitem(sys.modules, "h5py", None)  # makes ``import h5py`` raise ImportError
     with pytest.raises(ImportError, match=r'pip install "wecss\[h5\]"'):
         read_bemio(tmp_path / "any.h5")
+
+
+@pytest.mark.parametrize("kind", ["truncated", "empty", "random"])
+def test_a_truncated_or_damaged_h5_file_is_named_with_what_is_wrong(h5py: Any, tmp_path: Path, kind: str) -> None:
+    """HDF5's own OSError named no file; the reader's error names it and says what is wrong."""
+    whole = tmp_path / "whole.h5"
+    with h5py.File(whole, "w") as f:
+        f["simulation_parameters/w"] = np.linspace(0.1, 3.0, 5000)
+    data = whole.read_bytes()
+    path = tmp_path / f"{kind}.h5"
+    content = {"truncated": data[: len(data) // 2], "empty": b"", "random": np.random.default_rng(1).bytes(5000)}
+    path.write_bytes(content[kind])
+    what = {
+        "truncated": rf"truncated or damaged: {len(data) // 2} bytes, the file's header says more",
+        "empty": "the file is empty",
+        "random": r"not an HDF5 file \(no HDF5 signature\)",
+    }[kind]
+    with pytest.raises(BemioFormatError, match=rf"cannot read the BEMIO \.h5 file '{path}': {what} \(HDF5: "):
+        read_bemio(path)

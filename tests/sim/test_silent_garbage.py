@@ -100,6 +100,21 @@ def test_an_added_mass_1000_times_too_large_is_refused():
         check_against_database("m4-111", list(device.model.bodies), HydroData(ds))
 
 
+def test_a_negative_heave_hydrostatic_stiffness_is_refused_before_the_run():
+    """C33 = rho g A_wp >= 0: a sign error in the data made the float sink without end, seen late as a "drift"."""
+    device, hydro = _m4_111()
+    ds = hydro.dataset.copy(deep=True)
+    heave = "float_1__Heave"
+    c33 = float(ds.hydrostatic_stiffness.sel(influenced_dof=heave, radiating_dof=heave))
+    assert c33 > 0
+    ds["hydrostatic_stiffness"].loc[{"influenced_dof": heave, "radiating_dof": heave}] = -c33
+    with pytest.raises(
+        DeviceSpecError,
+        match=rf"body 'float_1'.*hydrostatic stiffness in heave .* is {-c33:.6g} N/m; accepted: 0 or more",
+    ):
+        check_against_database("m4-111", list(device.model.bodies), HydroData(ds))
+
+
 def test_a_scene_whose_device_names_a_scaled_or_thin_database_is_refused(tmp_path):
     """The same checks reached from a scene: the device spec names a database file with the added mass scaled by
     1000, then one of two frequencies."""

@@ -469,6 +469,12 @@ def _device_parts(
         device = _device(name).with_elastic_model()
     except ValueError as err:
         raise SceneError(str(err)) from None
+    if device.model.nv == 0:
+        raise SceneError(
+            f"device {device.name!r} has no degree of freedom (joints: "
+            f"{', '.join(f'{j.name} {j.kind}' for j in device.model.joints) or 'none'}); a run needs at least one "
+            "joint that moves: planar or free to the ground, revolute or prismatic between bodies"
+        )
     try:
         database = device.hydro(hydro)
     except FileNotFoundError as err:

@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import traceback
 
 from ..compiled import CompiledScene, compile_plant, with_linear_gains
 from ..linear import LinearModel, linearize
-from ..scene import Scene, SceneError
+from ..scene import Scene, SceneError, available_runners
+from ..scene import runner as get_runner
 from ._protocol import ControlContext, Controller
 from ._registry import available, check_controller, create
 
@@ -74,7 +76,7 @@ def _scene_controller(scene: Scene) -> Controller:
     try:
         return create(choice.name, **choice.parameters)
     except (TypeError, ValueError) as err:
-        raise SceneError(f"controller {choice.name!r} with parameters {dict(choice.parameters)}: {err}") from None
+        raise SceneError(f"controller {choice.name!r} with parameters {dict(choice.parameters)}: {err}") from err
 
 
 def attach_controller(compiled: CompiledScene, controller: Controller | None = None) -> ControlledScene:
@@ -106,19 +108,22 @@ def _attach(compiled: CompiledScene, controller: Controller, *, given: bool) -> 
     try:
         controller.setup(context)
         gains = controller.linear_gains()
-    except (TypeError, ValueError) as err:
-        raise SceneError(f"controller {name}: {err}") from None
+    except (TypeError, ValueError) as err:  # the controller's own error chained, with where it was raised
+        raise SceneError(f"controller {name}: {err} ({raised_at(err)})") from err
     runner = compiled.scene.runner
     if gains is None and not runner.capabilities.sampled_controllers:
+        calling = [n for n in available_runners() if get_runner(n).capabilities.sampled_controllers]
         raise SceneError(
-            f"solver.method {runner.name!r} needs a controller with linear gains (such as 'damping'); {name} has "
-            "none: use 'linear' or a time-domain solver such as 'beeman'"
+            f"solver.method {runner.name!r} needs a controller with linear gains (a constant PTO damping and "
+            f"stiffness, such as 'damping'): it never calls the controller during the run; {name} has none (it "
+            f"computes its force every control period): use a runner that calls it, one of {', '.join(calling)} "
+            "('linear' steps the same linearised equations in time)"
         )
     if gains is not None:
         try:
             compiled = with_linear_gains(compiled, *gains)
         except ValueError as err:
-            raise SceneError(f"controller {name}: linear_gains() gave {gains!r}: {err}") from None
+            raise SceneError(f"controller {name}: linear_gains() gave {gains!r}: {err}") from err
     horizon = controller.preview_horizon
     if horizon is not None:
         periods = horizon / context.control_period
@@ -129,6 +134,15 @@ def _attach(compiled: CompiledScene, controller: Controller, *, given: bool) -> 
             )
     fields = {f.name: getattr(compiled, f.name) for f in dataclasses.fields(CompiledScene)}
     return ControlledScene(**fields, controller=controller, control_context=context, controller_given=given)
+
+
+def raised_at(err: BaseException) -> str:
+    """Where ``err`` was raised: "raised in FUNCTION at FILE:LINE" of its innermost frame."""
+    frames = traceback.extract_tb(err.__traceback__)
+    if not frames:
+        return "raised outside a traceback"
+    last = frames[-1]
+    return f"raised in {last.name} at {last.filename}:{last.lineno}"
 
 
 def compile_scene(scene: Scene, controller: Controller | None = None) -> ControlledScene:

@@ -1,7 +1,8 @@
 """A device checked against its hydrodynamic database before a run (issue 31: each of these ran to the end with
 no word): a body's ``hydro_body`` naming another body's data, or another layout's database (the body far from the
 data's body); a float far above the water or deep under it; a mass typed in the wrong unit (grams as kilograms)
-against the buoyancy; an added mass far beyond any body's; a database of too few frequencies.
+against the buoyancy; an added mass far beyond any body's; a negative heave hydrostatic stiffness; a database of too
+few frequencies.
 
 The body size is V^(1/3) [m] from the database's displaced volume, as in the run's validity notes
 (``wecss/sim/_guards.py``). The limits are wide: each refused case is off by an order of magnitude or more.
@@ -34,6 +35,11 @@ NOTC float 0.79; a body held by its joints may differ, by less than ten times)."
 ADDED_MASS_RATIO_LIMIT: float = 100.0
 """Largest infinite-frequency added mass of a body's translation over its displaced mass rho V (a heaving
 hemisphere 0.5, a thin flat float a few)."""
+
+NEGATIVE_HEAVE_TOLERANCE: float = 1e-6
+"""A database body's heave hydrostatic stiffness C33 below minus this fraction of rho g V^(2/3) is refused: C33 is
+rho g times the waterplane area, never negative (0 for a submerged body); a negative one makes the body sink or
+rise without end, which a run would show only late, as a drift."""
 
 MIN_FREQUENCIES: int = 10
 """Fewest frequencies of a database a run accepts: the radiation memory and the excitation are interpolated
@@ -78,6 +84,16 @@ def check_against_database(name: str, bodies: Sequence[Body], hydro: HydroData) 
                         f"within {limit:g} x its size V^(1/3) = {size:.4g} m (another body's data, another layout's "
                         "database, or a body placed away from the water?)"
                     )
+        heave = f"{body.hydro_body}__Heave"
+        if heave in hydro.dofs:
+            c33 = float(ds.hydrostatic_stiffness.sel(influenced_dof=heave, radiating_dof=heave))
+            scale = hydro.rho * hydro.g * size**2
+            if c33 < -NEGATIVE_HEAVE_TOLERANCE * scale:
+                raise DeviceSpecError(
+                    f"{where}: the database's hydrostatic stiffness in heave (hydrostatic_stiffness "
+                    f"[{heave}, {heave}]) is {c33:.6g} N/m; accepted: 0 or more (rho g times the waterplane area, "
+                    f"about rho g V^(2/3) = {scale:.4g} N/m for this body): a sign error in the data?"
+                )
         ratio = body.mass / (hydro.rho * volume)
         low, high = MASS_RATIO_RANGE
         if not low <= ratio <= high:

@@ -111,6 +111,16 @@ class Device:
             If the spec file does not exist.
         """
         spec, folder = read_spec(source)
+        try:
+            return cls._from_read_spec(spec, folder)
+        except DeviceSpecError as err:
+            if folder is None or str(err).startswith(str(source)):
+                raise
+            raise DeviceSpecError(f"{source}: {err}") from None
+
+    @classmethod
+    def _from_read_spec(cls, spec: dict[str, Any], folder: Path | None) -> Device:
+        """The device of a spec read by ``read_spec`` (``folder``: its file's folder, None for a dict)."""
         model, ptos = build_model(spec)
         hydro = hydro_source(spec, folder)
         assumptions = {str(k): str(v) for k, v in spec.get("assumptions", {}).items()}
@@ -360,7 +370,14 @@ class Device:
         dict
             ``equilibrium`` (q), ``periods`` [s] sorted (inf for modes without stiffness) and ``modes``
             (columns normalised to the largest entry, rows ``model.velocity_names``).
+
+        Raises
+        ------
+        ValueError
+            If the device has no degree of freedom (every joint fixed or welded).
         """
+        if self.model.nv == 0:
+            raise ValueError(f"device {self.name!r} has no degree of freedom (every joint fixed or welded)")
         statics = self.statics(hydro)
         q = statics.equilibrium()
         mass = self.dynamics(hydro).terms(q, np.zeros(self.model.nv)).mass

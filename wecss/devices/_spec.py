@@ -55,6 +55,7 @@ Spec layout (TOML; the same keys as a dict)::
 
 from __future__ import annotations
 
+import math
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
@@ -78,6 +79,24 @@ _ACTUATOR_KEYS = {
 
 class DeviceSpecError(ValueError):
     """A device spec is malformed (unknown or missing keys, bad values)."""
+
+
+#: The spec's numeric fields: a finite number or a list of finite numbers.
+_NUMERIC_KEYS = {
+    "mass", "inertia", "center_of_mass", "axis", "point", "damping", "stiffness", "rest", "rest_length",
+    "point_a", "point_b", *_LIMIT_KEYS,
+}  # fmt: skip
+
+
+def _check_numbers(where: str, entry: Mapping[str, Any]) -> None:
+    """Refuse a numeric field (:data:`_NUMERIC_KEYS`) of ``entry`` that is not a finite number or a list of finite
+    numbers; the message names the field and the value (the bodies, joints and PTOs check the ranges)."""
+    for key in sorted(_NUMERIC_KEYS & set(entry)):
+        value = entry[key]
+        items = value if isinstance(value, list) else [value]
+        numbers = all(isinstance(x, int | float) and not isinstance(x, bool) for x in items)
+        if not (numbers and all(math.isfinite(x) for x in items)):
+            raise DeviceSpecError(f"{where}: {key} = {value!r}: expected a finite number or a list of finite numbers")
 
 
 def _check_keys(where: str, entry: Mapping[str, Any], allowed: set[str], required: set[str]) -> None:
@@ -108,6 +127,11 @@ def read_spec(source: str | Path | Mapping[str, Any]) -> tuple[dict[str, Any], P
         return read_toml(path), path.parent
     except tomllib.TOMLDecodeError as err:
         raise DeviceSpecError(f"{path}: {err}") from None
+    except UnicodeDecodeError as err:
+        raise DeviceSpecError(
+            f"{path}: not a text file (byte {err.start} is {err.object[err.start : err.start + 1]!r}, not UTF-8); "
+            "a device spec is a UTF-8 TOML file"
+        ) from None
 
 
 def hydro_source(spec: Mapping[str, Any], folder: Path | None) -> str | None:
@@ -172,6 +196,7 @@ def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | Ac
     for k, entry in enumerate(spec["bodies"]):
         where = f"device {name!r}, bodies[{k}]"
         _check_keys(where, entry, _BODY_KEYS, {"name", "mass", "inertia", "center_of_mass"})
+        _check_numbers(where, entry)
         try:
             bodies.append(Body(**{k: v for k, v in entry.items() if k != "flexible"}))
         except (TypeError, ValueError) as err:
@@ -180,6 +205,7 @@ def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | Ac
     for k, entry in enumerate(spec["joints"]):
         where = f"device {name!r}, joints[{k}]"
         _check_keys(where, entry, _JOINT_KEYS, {"name", "kind", "child"})
+        _check_numbers(where, entry)
         try:
             joints.append(Joint(**entry))
         except (TypeError, ValueError) as err:
@@ -193,6 +219,7 @@ def build_model(spec: Mapping[str, Any]) -> tuple[Multibody, tuple[JointPTO | Ac
         where = f"device {name!r}, ptos[{k}]"
         kind = entry.get("kind")
         fields = {key: value for key, value in entry.items() if key != "kind"}
+        _check_numbers(where, entry)
         try:
             if kind == "joint":
                 _check_keys(where, entry, _JOINT_PTO_KEYS, {"name", "kind", "joint"})

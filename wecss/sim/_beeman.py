@@ -23,7 +23,7 @@ from ..compiled.kernels import Workspace, accelerations, configure, integrate_co
 from ..control import ControlledScene
 from ..scene import Capabilities
 from ._fixed_step import FixedStepRunner
-from ._guards import check_beeman_elastic
+from ._guards import check_beeman_elastic, check_beeman_step
 from ._loop import (
     ACCELERATION_FLOOR,
     Chunk,
@@ -201,6 +201,7 @@ class Beeman(FixedStepRunner):
 
     def prepare(self, controlled: ControlledScene) -> Any:
         check_beeman_elastic(controlled)
+        check_beeman_step(controlled)
         return None
 
     def advance(self, prepared: Any, chunk: Chunk) -> tuple[int, int]:

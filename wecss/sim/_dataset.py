@@ -20,7 +20,7 @@ from ..attributes import apply_attrs
 from ..control import ControlledScene
 from ..outputs import STREAMED_GROUPS, Variable, variables_of
 from ._attrs import result_attrs
-from ._guards import motion_notes
+from ._guards import DriftCheck, motion_notes
 from ._layout import columns, hydro_kinds, rotary_ptos, velocity_kinds
 from ._quantities import Quantities
 from ._record import Record
@@ -137,8 +137,9 @@ def series_variables(
     return data, coords, qs._values.get("poses")
 
 
-def build_result(controlled: ControlledScene, record: Record) -> xr.Dataset:
-    """The Dataset of a run from its record (see the module docstring)."""
+def build_result(controlled: ControlledScene, record: Record, drift: DriftCheck | None = None) -> xr.Dataset:
+    """The Dataset of a run from its record (see the module docstring); ``drift``: a re-run at half the step that
+    splits a drift into its numerical and physical parts in the notes (``wecss.sim._drift_check``)."""
     groups = output_groups(controlled)
     qs = Quantities(controlled, record)
     data: dict[str, Any] = {}
@@ -146,7 +147,7 @@ def build_result(controlled: ControlledScene, record: Record) -> xr.Dataset:
     if record.time.size and groups:
         coords["time"] = record.time
     _add(qs, variables_of(groups), data, coords)
-    motion = motion_notes(controlled, record["q"], qs._values.get("poses"))
+    motion = motion_notes(controlled, record["q"], qs._values.get("poses"), drift)
     return _finish(qs, data, coords, motion)
 
 

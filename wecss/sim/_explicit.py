@@ -30,6 +30,7 @@ from ..compiled.kernels import accelerations, integrate_configuration, kernel, k
 from ..control import ControlledScene
 from ..scene import Capabilities, SceneError
 from ._beeman import Beeman
+from ._guards import check_beeman_step
 from ._loop import (
     ACCELERATION_FLOOR,
     Chunk,
@@ -176,6 +177,7 @@ class BeemanExplicit(Beeman):
     def prepare(self, controlled: ControlledScene) -> Any:
         """The rigid plant, the added mass and the iteration's spectral radius at the equilibrium; refuses a scene
         where the iteration cannot converge."""
+        check_beeman_step(controlled)
         factor = iteration_factor(controlled.plant, controlled.q0)
         if factor > MAX_ITERATION_FACTOR:
             raise SceneError(

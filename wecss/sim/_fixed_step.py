@@ -288,7 +288,8 @@ def run_fixed_step(
             raise SimulationDiverged(
                 f"body {body} moved {shift:.4g} m from its equilibrium by t = {done * h:.6g} s, beyond "
                 f"solver.translation_bound ({bound:.4g} m): a drift (nothing restores horizontal motion without a "
-                "mooring) or a divergence; give a larger solver.translation_bound if the motion is meant",
+                "mooring), the integrator's error (a run at half the step or with solver.method 'rk4' tells) or a "
+                "divergence; give a larger solver.translation_bound if the motion is meant",
                 done * h,
                 done,
                 {"q": q.copy(), "v": v.copy()},

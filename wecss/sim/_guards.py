@@ -17,8 +17,10 @@ import xarray as xr
 from ..compiled import DRY, OUTSIDE_TABLE, SUBMERGED, CompiledScene
 from ..compiled.kernels import poses
 from ..linear import cartesian_mass, equilibrium_maps
-from ..scene import SceneError
+from ..scene import EXPLICIT_RUNNER, SceneError
 from ..waves import wavenumber
+from ._drift import DRIFT_LIMIT as DRIFT_LIMIT
+from ._drift import DriftCheck, drift_note
 from ._rk4_check import check_rk4 as check_rk4_region
 
 #: Fewer steps than this per period 2 pi / |s| of the fastest mode are noted (an accurate step resolves it).
@@ -32,32 +34,32 @@ HEIGHT_LIMIT = 1.0
 TRANSLATION_LIMIT = 0.5
 #: A body's largest rotation from its equilibrium above this angle [rad] (20 degrees) is noted.
 ROTATION_LIMIT = float(np.deg2rad(20.0))
-#: A body whose horizontal mean position moves by more than this multiple of its size V^(1/3) between the first and
-#: the last tenth of the saved record is noted as drifting.
-DRIFT_LIMIT = 1.0
 
 
-def _modes(compiled: CompiledScene, damped: bool = True) -> tuple[np.ndarray, np.ndarray]:
+def _modes(compiled: CompiledScene, damped: bool = True, pto_springs: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Eigenvalues s and eigenvectors (velocity part first) of the plant linearised about its equilibrium with the
     PTO gains in its equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left
-    out); without ``damped``, of the undamped plant: s = i omega."""
+    out); without ``damped``, of the undamped plant: s = i omega; without ``pto_springs``, the PTO stiffness taken
+    out of the static stiffness (at the same equilibrium)."""
     p = compiled.plant
     b, _, g, _ = equilibrium_maps(compiled)
     mass = b.T @ cartesian_mass(compiled, compiled.q0) @ b
     damping = g.T @ np.diag(p.pto_damping) @ g if damped else np.zeros_like(mass)
+    stiffness = compiled.stiffness if pto_springs else compiled.stiffness - g.T @ np.diag(p.pto_stiffness) @ g
     nv = mass.shape[0]
     a = np.zeros((2 * nv, 2 * nv))
     a[:nv, nv:] = np.eye(nv)
-    a[nv:, :nv] = -np.linalg.solve(mass, compiled.stiffness)
+    a[nv:, :nv] = -np.linalg.solve(mass, stiffness)
     a[nv:, nv:] = -np.linalg.solve(mass, damping)
     return np.linalg.eig(a)
 
 
-def fastest_mode(compiled: CompiledScene, damped: bool = True) -> float:
+def fastest_mode(compiled: CompiledScene, damped: bool = True, pto_springs: bool = True) -> float:
     """|s| [rad/s] of the fastest mode of the plant linearised about its equilibrium with the PTO gains in its
     equations (mass with A_inf, static stiffness, PTO damping and stiffness; radiation memory left out); without
-    ``damped``: the largest undamped natural frequency."""
-    eig, _ = _modes(compiled, damped)
+    ``damped``: the largest undamped natural frequency; without ``pto_springs``: that of the plant without its PTO
+    springs (its hydrostatics, moorings and joints)."""
+    eig, _ = _modes(compiled, damped, pto_springs)
     return float(np.max(np.abs(eig))) if eig.size else 0.0
 
 
@@ -113,6 +115,34 @@ def check_beeman_elastic(compiled: CompiledScene) -> None:
         )
 
 
+def beeman_step_limit(compiled: CompiledScene) -> tuple[float, float]:
+    """(the largest step [s] Beeman's explicit position step takes stably, the plant's fastest undamped natural
+    frequency omega [rad/s] that sets it): BEEMAN_ELASTIC_LIMIT / omega, omega of the plant without its PTO springs
+    (hydrostatics, moorings, joints; a stiff PTO's steps fall back on the trapezoidal rule); inf without one."""
+    rate = fastest_mode(compiled, damped=False, pto_springs=False)
+    return (BEEMAN_ELASTIC_LIMIT / rate if rate > 0 else float("inf")), rate
+
+
+def check_beeman_step(compiled: CompiledScene) -> None:
+    """Refuse a step beyond Beeman's stability limit for the rigid plant's fastest undamped natural frequency
+    (:func:`beeman_step_limit`), before the run: such a run (the M4 at dt = T/5: omega dt = 1.95) grows until a
+    bound stops it late, as a drift or a divergence blamed on other causes.
+
+    Raises
+    ------
+    SceneError
+        Naming solver.dt, the limit and the frequency.
+    """
+    limit, rate = beeman_step_limit(compiled)
+    if compiled.dt > limit:
+        raise SceneError(
+            f"solver.dt = {compiled.dt:.4g} s is beyond the stability limit of Beeman's explicit position step for "
+            f"this plant: its fastest undamped natural frequency is {rate:.4g} rad/s (period {2 * np.pi / rate:.4g} "
+            f"s), so dt <= {BEEMAN_ELASTIC_LIMIT:.3g} / omega = {limit:.4g} s (omega dt <= 2, with a margin of 1.1); "
+            "give a smaller solver.dt (such as 'Tp/200') or solver.tolerance"
+        )
+
+
 def _gains(compiled: CompiledScene) -> str:
     p = compiled.plant
     parts = [
@@ -141,6 +171,15 @@ def stiff_pto_hint(compiled: CompiledScene) -> str:
     gains = _gains(compiled)
     rate = fastest_mode(compiled)
     steps = 2 * np.pi / (rate * compiled.dt) if rate > 0 else np.inf
+    undamped = fastest_mode(compiled, damped=False)
+    if undamped * compiled.dt > BEEMAN_ELASTIC_LIMIT and compiled.scene.runner.name in ("beeman", EXPLICIT_RUNNER):
+        return (
+            f" solver.dt = {compiled.dt:.4g} s is beyond the stability limit of Beeman's explicit position step for "
+            f"the plant's fastest undamped mode with its PTO springs ({undamped:.4g} rad/s: dt <= "
+            f"{BEEMAN_ELASTIC_LIMIT / undamped:.4g} s): give a smaller solver.dt"
+            + (f" or softer PTO springs ({gains})" if gains else "")
+            + "."
+        )
     if steps < GOOD_STEPS_PER_MODE and elastic_cause(compiled):
         return (
             f" The elastic bodies {list(compiled.device.elastic_bodies)} set the fastest mode (|s| = {rate:.4g} "
@@ -183,7 +222,7 @@ def step_notes(compiled: CompiledScene) -> list[str]:
     ]
 
 
-def _sizes(compiled: CompiledScene) -> dict[str, float]:
+def body_sizes(compiled: CompiledScene) -> dict[str, float]:
     """Body name -> V^(1/3) [m] for the bodies the database has a positive displaced volume for."""
     ds = compiled.hydro.dataset
     if "displaced_volume" not in ds or "body" not in ds.displaced_volume.dims:
@@ -212,7 +251,7 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
                 f"steep sea: height / wavelength at the (peak) period = {steepness:.3g} (above "
                 f"{STEEPNESS_LIMIT:.3g}); linear wave theory and linear hydrodynamics lose accuracy"
             )
-    sizes = _sizes(compiled)
+    sizes = body_sizes(compiled)
     if sizes:
         name, size = min(sizes.items(), key=lambda item: item[1])
         if hs > HEIGHT_LIMIT * size:
@@ -221,6 +260,57 @@ def wave_notes(compiled: CompiledScene) -> list[str]:
                 f"{name}; linear hydrodynamics lose accuracy"
             )
     return notes
+
+
+BREAKING_STEEPNESS: float = 1 / 7
+"""The largest wave height over wavelength a sea may have (waves break beyond it, Michell's H / lambda = 0.142): a
+height or a record above it at its (peak) period is refused, not simulated."""
+
+
+def check_sea(compiled: CompiledScene) -> None:
+    """Refuse, before the run, a sea steeper than waves can be: its height (H of a regular wave, Hs of a spectrum;
+    4 sqrt(m0) of a tabulated spectrum or a measured record's components) over the wavelength at its (peak) period
+    (a record's: its largest component's) at the database's depth above :data:`BREAKING_STEEPNESS`. Such a sea is
+    an input error (Hs 1e6 m; Hs 2.0 meant as 2 cm; a record in cm), which would otherwise end late as a "drift".
+
+    Raises
+    ------
+    SceneError
+        Naming the field, the value, the wavelength and the largest height accepted.
+    """
+    waves, sea = compiled.waves, compiled.scene.sea
+    if sea.kind == "calm" or waves is None or not waves.omega.size:
+        return
+    amplitude = np.abs(np.asarray(waves.amplitude))
+    given = sea.kind in ("regular", "jonswap", "pierson-moskowitz") and sea.period is not None
+    if given:
+        height, field = float(sea.height), "sea.height"
+        omega = 2 * np.pi / float(sea.period or np.inf)
+    else:
+        height = 4 * float(np.sqrt(np.sum(amplitude**2) / 2))
+        field = f"the {sea.kind} sea's significant height 4 sqrt(m0)" + (
+            f" (sea.file {sea.file!r})" if sea.file else ""
+        )
+        frequencies = np.asarray(waves.omega).ravel()
+        energy = amplitude**2
+        if energy.size != frequencies.size:  # components spread over directions too: the energy per frequency
+            if energy.size % frequencies.size:
+                return
+            energy = energy.reshape(-1, frequencies.size).sum(axis=0)
+        omega = float(frequencies[int(np.argmax(energy.ravel()))])
+    if not omega > 0:
+        return
+    k = float(wavenumber(np.array([omega]), compiled.hydro.water_depth, compiled.hydro.g)[0])
+    wavelength = 2 * np.pi / k
+    water = float(compiled.hydro.water_depth)
+    depth = f"depth {water:.4g} m" if np.isfinite(water) else "deep water"
+    if height > BREAKING_STEEPNESS * wavelength:
+        hint = "a record in cm or mm instead of m?" if not given else "a height in the wrong unit? 2 cm is 0.02"
+        raise SceneError(
+            f"{field} = {height:.4g} m is {height / wavelength:.3g} times the wavelength {wavelength:.4g} m at the "
+            f"(peak) period {2 * np.pi / omega:.4g} s ({depth}); accepted: at most "
+            f"1/7 of it, {BREAKING_STEEPNESS * wavelength:.4g} m (waves break beyond H / lambda = 1/7): {hint}"
+        )
 
 
 def calm_notes(compiled: CompiledScene) -> list[str]:
@@ -267,12 +357,18 @@ POSE_BLOCK: int = 100_000
 
 
 def motion_notes(
-    compiled: CompiledScene, q: np.ndarray, known: tuple[np.ndarray, np.ndarray] | None = None
+    compiled: CompiledScene,
+    q: np.ndarray,
+    known: tuple[np.ndarray, np.ndarray] | None = None,
+    check: DriftCheck | None = None,
 ) -> list[str]:
     """Notes on the saved configurations ``q`` (n_t, nq): motion amplitudes against the bodies' size and a drift
     of the horizontal mean position. ``known``: the poses of ``q`` (positions, rotation vectors) when the caller
-    has them already (else they are computed here, in blocks: a long record's poses would double its memory)."""
+    has them already (else they are computed here, in blocks: a long record's poses would double its memory);
+    ``check``: the drift of a re-run at half the step, which splits a drift into its numerical and physical parts
+    (:func:`drift_note`)."""
     summary = MotionSummary(compiled, q.shape[0])
+    summary.check = check
     for start in range(0, q.shape[0], POSE_BLOCK):
         rows = slice(start, start + POSE_BLOCK)
         summary.add(q[rows], None if known is None else (known[0][rows], known[1][rows]))
@@ -293,6 +389,7 @@ class MotionSummary:
         self.rest = poses(compiled.plant, np.ascontiguousarray(compiled.q0[None]))
         self.angle, self.shift = np.zeros(n_body), np.zeros(n_body)
         self.head, self.tail = np.zeros((n_body, 2)), np.zeros((n_body, 2))
+        self.check: DriftCheck | None = None  # a re-run at half the step, for the drift note (set by the caller)
 
     def add(self, q: np.ndarray, known: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         """The next rows ``q`` (k, nq) of the record, with their poses ``known`` when the caller has them."""
@@ -313,9 +410,8 @@ class MotionSummary:
             return []
         compiled = self.compiled
         names = list(compiled.device.model.body_names)
-        sizes = _sizes(compiled)
+        sizes = body_sizes(compiled)
         angle, shift = self.angle, self.shift
-        head, tail = self.head / self.tenth, self.tail / self.tenth
         notes = []
         big = [f"{n} {np.rad2deg(a):.3g} deg" for n, a in zip(names, angle, strict=True) if a > ROTATION_LIMIT]
         if big:
@@ -334,16 +430,15 @@ class MotionSummary:
                 f"large vertical motions from the equilibrium (above {TRANSLATION_LIMIT:g} x the body size V^(1/3)): "
                 f"{', '.join(big)}; linear hydrodynamics lose accuracy"
             )
-        # only the horizontal directions nothing restores (a mooring or a joint to the ground holds the others)
-        drift = np.linalg.norm((tail - head) * unrestrained_directions(compiled), axis=-1)
-        far = [f"{n} {d:.3g} m" for n, d in zip(names, drift, strict=True) if n in sizes and d > DRIFT_LIMIT * sizes[n]]
-        if far:
-            notes.append(
-                f"drift: the horizontal mean position moved by more than {DRIFT_LIMIT:g} x the body size over the run "
-                f"({', '.join(far)}); nothing restores it: give the device a linear mooring ([[moorings]] in its "
-                "spec, docs/byo-bem.md) or a solver.translation_bound"
-            )
-        return notes
+        note = drift_note(names, sizes, self.drift(), self.check)
+        return notes + ([note] if note else [])
+
+    def drift(self) -> np.ndarray:
+        """(n_body, 2) [m]: the move of each body's horizontal mean position from the first to the last tenth of the
+        record, along the directions nothing restores (a mooring or a joint to the ground holds the others)."""
+        if self.n_rows < 2:
+            return np.zeros_like(self.head)
+        return (self.tail - self.head) / self.tenth * unrestrained_directions(self.compiled)
 
 
 #: Singular values of the static stiffness below this fraction of the largest are free directions.
@@ -379,7 +474,7 @@ def translation_bound(compiled: CompiledScene) -> float:
     given = compiled.scene.solver.translation_bound
     if given is not None:
         return float(given)
-    sizes = _sizes(compiled)
+    sizes = body_sizes(compiled)
     return TRANSLATION_BOUND_SIZES * max(sizes.values()) if sizes else float("inf")
 
 

@@ -18,6 +18,8 @@ from ..provenance import with_relative_paths
 from ..scene import Scene
 from ._alpha import with_elastic_choice
 from ._dataset import build_result
+from ._drift_check import drift_check, record_drift
+from ._guards import check_sea
 from ._stream import ResultStream, streamable
 from ._tolerance import choose_step
 
@@ -65,10 +67,19 @@ def simulate(
     pilot runs); the result's ``scene`` attribute is the scene that ran (its method and step), and its attributes
     ``solver_tolerance``, ``tolerance_estimate`` and ``tolerance_choice`` record the choice.
 
+    A run whose bodies drift (the drift note, ``wecss.sim._drift``) is run again at half the step, its motion only
+    (about twice the run's time; not for runs over ``MAX_CHECK_STEPS`` steps): the note then says which part of the
+    drift is the integrator's error and which is physical (``wecss.sim._drift_check``).
+
     Raises
     ------
     SceneError
-        On a malformed scene (before any time is spent).
+        On a malformed scene (before any time is spent); a sea steeper than waves can be (height over the
+        wavelength at the peak period above 1/7); Beeman at a step past its stability limit for the plant's fastest
+        undamped mode.
+    wecss.files.WriteFailed
+        (an OSError) If the result file cannot be written (a full disk: the message says so and what became of the
+        file).
     SimulationDiverged
         If the state becomes non-finite, a hinge passes its bound, the corrector fails, or energy grows in calm
         water; the exception carries the time, step and state.
@@ -109,6 +120,7 @@ def simulate(
     else:
         raise TypeError(f"simulate takes a Scene, a CompiledScene or a scene file; got {type(scene).__name__}")
     controlled = with_elastic_choice(controlled)  # generalised-alpha where the elastic modes need it
+    check_sea(controlled)  # a sea steeper than waves can be: an input error, refused before the run
     runner = controlled.scene.runner
     chosen = choice.attrs() if choice is not None else {}
     if path is not None and streamable(controlled):
@@ -116,7 +128,9 @@ def simulate(
     with interrupts_surfaced():  # Ctrl-C inside a compiled kernel is an interrupt, not a failure of the run
         record = runner.run(controlled, progress=progress)
     record.solver.update(chosen)
-    ds = build_result(controlled, record)
+    q = record.series.get("q")
+    check = drift_check(controlled, record_drift(controlled, q)) if q is not None and q.shape[0] >= 2 else None
+    ds = build_result(controlled, record, check)
     if path is not None:
         ds.attrs = with_relative_paths(ds.attrs, path)  # the input files' paths from the result's folder
         write_netcdf(ds, path, compress=compress, float32=float32)
@@ -144,4 +158,5 @@ def _streamed(
         stream.stop(err)
         raise
     record.solver.update(chosen)
+    stream.motion.check = drift_check(controlled, stream.motion.drift())
     return xr.open_dataset(stream.finish(record), engine="netcdf4")

@@ -36,7 +36,8 @@ import numpy as np
 
 from ..compiled import MIN_STEPS_PER_PERIOD
 from ..control import ControlledScene, Controller, compile_scene
-from ..scene import Scene, SceneError, resolve_time, runner
+from ..scene import EXPLICIT_RUNNER, Scene, SceneError, resolve_time, runner
+from ._guards import beeman_step_limit
 from ._rk4 import RK4, RK4_POLE_LIMIT, Rk4
 from ._rk4_check import rk4_step_limit
 
@@ -272,6 +273,9 @@ def _plan(scene: Scene, compiled: ControlledScene, method: str, tol: float) -> _
     if compiled.waves is not None:
         shortest = 2 * np.pi / float(np.max(compiled.waves.omega))
         caps.append((shortest / MIN_STEPS_PER_PERIOD, f"{MIN_STEPS_PER_PERIOD} steps per shortest wave period"))
+    if method in ("beeman", EXPLICIT_RUNNER):  # refused past it (``check_beeman_step``)
+        beeman_limit, rate = beeman_step_limit(compiled)
+        caps.append((0.99 * beeman_limit, f"Beeman's stability for the fastest undamped mode ({rate:.4g} rad/s)"))
     if method == RK4.name:
         limit, cause = rk4_step_limit(compiled)
         caps.append((0.99 * limit, f"RK4's stability region ({cause})"))

@@ -57,10 +57,19 @@ def _case_row(folder: Path, case: Case) -> xr.Dataset:
     status = case_status(folder, case)
     result, failure = case_paths(folder, case)
     row = case_statistics(open_result(result)) if status == "done" else xr.Dataset()
-    error = json.loads(failure.read_text())["error"] if status == "failed" else ""
+    error = _failure_error(failure) if status == "failed" else ""
     row["status"] = xr.DataArray(status)
     row["error"] = xr.DataArray(error)
     return row
+
+
+def _failure_error(failure: Path) -> str:
+    """The error a failed case's record holds, or what is wrong with the record (damaged: a crash or a full disk
+    while it was written)."""
+    try:
+        return str(json.loads(failure.read_text(encoding="utf-8"))["error"])
+    except (json.JSONDecodeError, UnicodeDecodeError, KeyError, TypeError) as err:
+        return f"the failure record {str(failure)!r} is unreadable ({type(err).__name__}: {err}); run the case again"
 
 
 def combine(sweep: Sweep, folder: str | Path) -> xr.Dataset:

@@ -57,7 +57,15 @@ def prepare_folder(sweep: Sweep, folder: str | os.PathLike[str]) -> Path:
     record = path / SWEEP_FILE
     text = json.dumps(_definition(sweep), sort_keys=True, indent=1)
     if record.is_file():
-        if json.loads(record.read_text()) != json.loads(text):
+        try:
+            recorded = json.loads(record.read_text(encoding="utf-8"))
+        except (json.JSONDecodeError, UnicodeDecodeError) as err:
+            raise ValueError(
+                f"{record}: not a readable sweep record ({type(err).__name__}: {err}); this file, written when a "
+                "sweep starts in the folder, lets a resume check it is the same sweep: give a new folder, or remove "
+                f"the damaged {SWEEP_FILE} if the folder holds this same sweep (its finished cases are then kept)"
+            ) from None
+        if recorded != json.loads(text):
             raise ValueError(
                 f"{str(path)!r} holds another sweep ({SWEEP_FILE} differs); give a new folder or remove that one"
             )

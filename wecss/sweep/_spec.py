@@ -266,6 +266,11 @@ class Sweep:
             data = read_toml(path)
         except tomllib.TOMLDecodeError as err:
             raise SceneError(f"{path}: not valid TOML: {err}") from None
+        except UnicodeDecodeError as err:
+            raise SceneError(
+                f"{path}: not a text file (byte {err.start} is {err.object[err.start : err.start + 1]!r}, not "
+                "UTF-8); a sweep file is a UTF-8 TOML file"
+            ) from None
         return cls.from_dict(data, base=path.parent)
 
     @classmethod

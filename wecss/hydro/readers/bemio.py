@@ -123,68 +123,78 @@ def read_bemio(
     if not source.is_file():
         raise FileNotFoundError(f"no BEMIO .h5 file at {str(source)!r}")
 
-    with h5py.File(source, "r") as f:
-        reader = _Reader(f, source)
-        params = "simulation_parameters"
-        scaled = bool(reader.scalar(f"{params}/scaled", default=0.0))
-        file_rho = reader.scalar(f"{params}/rho", default=np.nan)
-        file_g = reader.scalar(f"{params}/g", default=np.nan)
-        rho_used = _choose(rho, file_rho, "rho", scaled, source)
-        g_used = _choose(g, file_g, "g", scaled, source)
-        omega_all = reader.vector(f"{params}/w")
-        wave_dir_deg = reader.vector(f"{params}/wave_dir")
-        depth = reader.water_depth(f"{params}/water_depth")
+    try:
+        f = h5py.File(source, "r")
+    except OSError as err:
+        raise BemioFormatError(_unreadable(source, err)) from None
+    try:
+        with f:
+            reader = _Reader(f, source)
+            params = "simulation_parameters"
+            scaled = bool(reader.scalar(f"{params}/scaled", default=0.0))
+            file_rho = reader.scalar(f"{params}/rho", default=np.nan)
+            file_g = reader.scalar(f"{params}/g", default=np.nan)
+            rho_used = _choose(rho, file_rho, "rho", scaled, source)
+            g_used = _choose(g, file_g, "g", scaled, source)
+            omega_all = reader.vector(f"{params}/w")
+            wave_dir_deg = reader.vector(f"{params}/wave_dir")
+            depth = reader.water_depth(f"{params}/water_depth")
 
-        numbers = sorted(int(m.group(1)) for key in f if (m := re.fullmatch(r"body(\d+)", key)))
-        if not numbers:
-            raise BemioFormatError(f"{source}: no /body1, /body2, ... groups; is this a BEMIO .h5 file?")
-        if numbers != list(range(1, len(numbers) + 1)):
-            found = ", ".join(f"body{n}" for n in numbers)
-            raise BemioFormatError(f"{source}: body groups must be body1..bodyN; found {found}")
-        n_bodies = len(numbers)
-        sizes = [_body_dofs(reader, f"body{b + 1}/properties") for b in range(n_bodies)]
-        starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int)
-        n_dof, n_f, n_h = int(sum(sizes)), omega_all.size, wave_dir_deg.size
+            numbers = sorted(int(m.group(1)) for key in f if (m := re.fullmatch(r"body(\d+)", key)))
+            if not numbers:
+                raise BemioFormatError(f"{source}: no /body1, /body2, ... groups; is this a BEMIO .h5 file?")
+            if numbers != list(range(1, len(numbers) + 1)):
+                found = ", ".join(f"body{n}" for n in numbers)
+                raise BemioFormatError(f"{source}: body groups must be body1..bodyN; found {found}")
+            n_bodies = len(numbers)
+            sizes = [_body_dofs(reader, f"body{b + 1}/properties") for b in range(n_bodies)]
+            starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int)
+            n_dof, n_f, n_h = int(sum(sizes)), omega_all.size, wave_dir_deg.size
 
-        added = np.zeros((n_dof, n_dof, n_f))
-        damping = np.zeros((n_dof, n_dof, n_f))
-        a_inf = np.zeros((n_dof, n_dof))
-        stiffness = np.zeros((n_dof, n_dof))
-        exc = np.zeros((n_dof, n_h, n_f), dtype=complex)
-        parts: dict[str, np.ndarray | None] = {"diffraction": np.zeros_like(exc), "froude_krylov": np.zeros_like(exc)}
-        names, cg, cb, volume = [], np.zeros((n_bodies, 3)), np.zeros((n_bodies, 3)), np.zeros(n_bodies)
-        for b in range(n_bodies):
-            body = f"body{b + 1}"
-            dof = sizes[b]
-            start = reader.scalar(f"{body}/properties/dof_start", default=float(starts[b] + 1))
-            if int(start) != starts[b] + 1:
-                raise BemioFormatError(
-                    f"{source}: /{body}/properties/dof_start = {start:g}; the bodies before it have {starts[b]} DOFs "
-                    f"(dof of each body: {sizes}), so it should be {starts[b] + 1}"
-                )
-            rows = slice(int(starts[b]), int(starts[b]) + dof)
-            names.append(reader.string(f"{body}/properties/name", default=body))
-            cg[b] = reader.vector(f"{body}/properties/cg", size=3)
-            cb[b] = reader.vector(f"{body}/properties/cb", size=3)
-            volume[b] = reader.scalar(f"{body}/properties/disp_vol")
-            coeffs = f"{body}/hydro_coeffs"
-            stiffness[rows, rows] = reader.array(f"{coeffs}/linear_restoring_stiffness", (dof, dof))
-            added[rows] = reader.array(f"{coeffs}/added_mass/all", (dof, n_dof, n_f))
-            a_inf[rows] = reader.array(f"{coeffs}/added_mass/inf_freq", (dof, n_dof))
-            damping[rows] = reader.array(f"{coeffs}/radiation_damping/all", (dof, n_dof, n_f))
-            exc[rows] = reader.complex(f"{coeffs}/excitation", (dof, n_h, n_f))
-            for key, groups in (("diffraction", ("scattering",)), ("froude_krylov", _FROUDE_KRYLOV_GROUPS)):
-                part = parts[key]
-                if part is None:
-                    continue
-                candidates = [f"{coeffs}/excitation/{group_name}" for group_name in groups]
-                group = next((c for c in candidates if f"{c}/re" in f), None)
-                values = None if group is None else reader.complex(group, (dof, n_h, n_f))
-                if values is None or not np.all(np.isfinite(values)):
-                    parts[key] = None  # absent, or WEC-Sim's NaN placeholder
-                else:
-                    part[rows] = values
-        code = reader.string("bem_data/code", default="")
+            added = np.zeros((n_dof, n_dof, n_f))
+            damping = np.zeros((n_dof, n_dof, n_f))
+            a_inf = np.zeros((n_dof, n_dof))
+            stiffness = np.zeros((n_dof, n_dof))
+            exc = np.zeros((n_dof, n_h, n_f), dtype=complex)
+            parts: dict[str, np.ndarray | None] = {
+                "diffraction": np.zeros_like(exc),
+                "froude_krylov": np.zeros_like(exc),
+            }
+            names, cg, cb, volume = [], np.zeros((n_bodies, 3)), np.zeros((n_bodies, 3)), np.zeros(n_bodies)
+            for b in range(n_bodies):
+                body = f"body{b + 1}"
+                dof = sizes[b]
+                start = reader.scalar(f"{body}/properties/dof_start", default=float(starts[b] + 1))
+                if int(start) != starts[b] + 1:
+                    raise BemioFormatError(
+                        f"{source}: /{body}/properties/dof_start = {start:g}; the bodies before it have "
+                        f"{starts[b]} DOFs (dof of each body: {sizes}), so it should be {starts[b] + 1}"
+                    )
+                rows = slice(int(starts[b]), int(starts[b]) + dof)
+                names.append(reader.string(f"{body}/properties/name", default=body))
+                cg[b] = reader.vector(f"{body}/properties/cg", size=3)
+                cb[b] = reader.vector(f"{body}/properties/cb", size=3)
+                volume[b] = reader.scalar(f"{body}/properties/disp_vol")
+                coeffs = f"{body}/hydro_coeffs"
+                stiffness[rows, rows] = reader.array(f"{coeffs}/linear_restoring_stiffness", (dof, dof))
+                added[rows] = reader.array(f"{coeffs}/added_mass/all", (dof, n_dof, n_f))
+                a_inf[rows] = reader.array(f"{coeffs}/added_mass/inf_freq", (dof, n_dof))
+                damping[rows] = reader.array(f"{coeffs}/radiation_damping/all", (dof, n_dof, n_f))
+                exc[rows] = reader.complex(f"{coeffs}/excitation", (dof, n_h, n_f))
+                for key, groups in (("diffraction", ("scattering",)), ("froude_krylov", _FROUDE_KRYLOV_GROUPS)):
+                    part = parts[key]
+                    if part is None:
+                        continue
+                    candidates = [f"{coeffs}/excitation/{group_name}" for group_name in groups]
+                    group = next((c for c in candidates if f"{c}/re" in f), None)
+                    values = None if group is None else reader.complex(group, (dof, n_h, n_f))
+                    if values is None or not np.all(np.isfinite(values)):
+                        parts[key] = None  # absent, or WEC-Sim's NaN placeholder
+                    else:
+                        part[rows] = values
+            code = reader.string("bem_data/code", default="")
+    except OSError as err:  # a damaged block inside a file whose header reads
+        raise BemioFormatError(_unreadable(source, err)) from None
 
     keep = np.flatnonzero(np.isfinite(omega_all) & (omega_all > 0))
     omega = omega_all[keep]
@@ -243,6 +253,20 @@ def read_bemio(
         diffraction=optional["diffraction"],
         attrs=attrs,
     )
+
+
+def _unreadable(source: Path, err: OSError) -> str:
+    """The message for an ``.h5`` file HDF5 cannot read: the file, what is wrong (truncated, not HDF5) and
+    HDF5's own words."""
+    reason = str(err)
+    size = source.stat().st_size
+    if "truncated file" in reason:
+        what = f"truncated or damaged: {size} bytes, the file's header says more"
+    elif "signature not found" in reason:
+        what = "the file is empty" if size == 0 else "not an HDF5 file (no HDF5 signature)"
+    else:
+        what = "damaged"
+    return f"cannot read the BEMIO .h5 file {str(source)!r}: {what} (HDF5: {reason}); accepted: a whole BEMIO .h5 file"
 
 
 def _choose(value: float | None, in_file: float, name: str, scaled: bool, source: Path) -> float:
