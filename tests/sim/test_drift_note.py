@@ -192,3 +192,14 @@ def test_a_run_too_long_to_re_run_says_its_drift_was_not_split(monkeypatch):
     assert f"its numerical part was not estimated (the run has {compiled.n_steps} steps, more than " in note
     assert "solver.method 'rk4' tells it from the physics; if it is physical, nothing restores it" in note
     assert _drift_check.drift_check(compiled, 0.01 * drift) is None  # 1 cm: no note, no re-run
+
+
+def test_a_run_with_probes_has_its_drift_split_too():
+    """The re-run keeps the motion alone: a scene's probes (kept by the elevation group it leaves out) made the
+    re-run's scene refuse itself."""
+    d = _m4_134("beeman", "Tp/60", 30.0).to_dict()
+    d["outputs"] = {"variables": ["motion", "elevation"], "probes": [[0.0, 0.0], [1.0, 0.0]]}
+    ds = simulate(Scene.from_dict(d))
+    total, numerical, physical = _split(str(ds.attrs["notes"]), "float_1")
+    assert physical == pytest.approx(RK4_DRIFT_30S, abs=0.003)
+    assert numerical == pytest.approx(total - RK4_DRIFT_30S, abs=0.003)

@@ -61,7 +61,7 @@ def drift_check(controlled: ControlledScene, drift: np.ndarray) -> DriftCheck | 
     half = dataclasses.replace(
         scene,
         solver=dataclasses.replace(scene.solver, dt=dt / 2, tolerance=None),
-        outputs=dataclasses.replace(scene.outputs, variables=("motion",), every=2 * scene.outputs.every),
+        outputs=dataclasses.replace(scene.outputs, variables=("motion",), every=2 * scene.outputs.every, probes=()),
     )
     controller = None  # the scene's controller section makes a new one
     if controlled.controller_given:  # a copy: the run's own controller keeps its state for the result's report
