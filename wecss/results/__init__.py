@@ -2,6 +2,8 @@
 CWR, RMS angle, RAO), fatigue (rainflow, streamed over many channels; stress fields and life maps; spectral: narrow
 band and Dirlik), plots and animations. (The result Dataset is built by the runs in ``wecss.sim``.)"""
 
+from ._animate import animate as animate
+from ._animate import check_animation as check_animation
 from ._annual_energy import HOURS_PER_YEAR as HOURS_PER_YEAR
 from ._annual_energy import annual_energy as annual_energy
 from ._annual_energy import power_matrix as power_matrix
@@ -42,3 +44,4 @@ from ._spectral_fatigue import spectral_fatigue as spectral_fatigue
 from ._streaming_rainflow import StreamingRainflow as StreamingRainflow
 from ._stress_field import StressFieldRecorder as StressFieldRecorder
 from ._summary_plot import plot_summary as plot_summary
+from ._sweep_plot import plot_sweep as plot_sweep
