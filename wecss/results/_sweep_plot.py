@@ -33,6 +33,9 @@ def _select(ds: xr.Dataset, variable: str, select: dict[str, Any] | None) -> tup
         if name not in da.dims:
             raise ValueError(f"select names {name!r}, not a dimension of {variable} {da.dims}")
         da, status = da.sel({name: value}), status.sel({name: value}) if name in status.dims else status
+    single = [d for d in da.dims if da.sizes[d] == 1]  # an axis of one value needs no choice
+    da = da.squeeze(single)
+    status = status.squeeze([d for d in single if d in status.dims])
     if da.ndim > 2:
         listed = {str(d): da[d].values.tolist() if d in da.coords else da.sizes[d] for d in da.dims}
         raise ValueError(
@@ -51,10 +54,10 @@ def plot_sweep(
     select: dict[str, Any] | None = None,
     path: str | Path | None = None,
 ) -> Any:
-    """A statistic of a sweep's combined dataset against its axes: one dimension as a line with markers, two as a
-    heat map (the first dimension along y) with each value written in its cell; failed and pending cases (NaN
-    statistics) marked with their status. More dimensions need ``select`` (dimension to value) for all but two.
-    Axis and colour-bar labels carry units. Saved to ``path`` when given; returns the figure.
+    """A statistic of a sweep's combined dataset against its axes: one dimension as a line with markers, two as
+    a heat map (the first dimension along y) with each value written in its cell; failed and pending cases (NaN
+    statistics) marked with their status. Dimensions of one value are dropped; more need ``select`` (dimension to
+    value) for all but two. Axis and colour-bar labels carry units. Saved to ``path`` when given; returns the figure.
 
     Raises
     ------
