@@ -152,3 +152,13 @@ def test_the_plot_writes_the_energy_in_each_bin(tmp_path):  # type: ignore[no-un
     assert fig.axes[0].get_xlabel() == "tp [s]" and fig.axes[0].get_ylabel() == "hs [m]"
     assert (tmp_path / "aep.png").is_file()
     plt.close(fig)
+
+
+def test_only_the_bins_leaning_on_a_nan_node_are_unknown():
+    values = np.full((4, 5), 1e3)
+    values[1, 2] = np.nan  # node hs 1, tp 8
+    scatter = _grid(np.full((2, 3), 10.0), np.array([1.5, 2.5]), np.array([7.0, 9.0, 11.0]), units="h")
+    result = annual_energy(_grid(values, units="W"), scatter, outside="unknown")
+    assert result.known.values.tolist() == [[False, False, True], [True, True, True]]
+    assert float(result.annual_energy) == pytest.approx(1e3 * 40.0 * 3600.0, rel=1e-12)
+    assert float(result.unknown_share) == pytest.approx(20.0 / 8766, rel=1e-12)
