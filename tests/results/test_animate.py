@@ -93,3 +93,14 @@ def test_mp4_without_ffmpeg_is_refused(tmp_path, monkeypatch):  # type: ignore[n
     with pytest.raises(ValueError, match="needs ffmpeg on the PATH"):
         animate(_poses(), tmp_path / "bodies.mp4")
     assert not (tmp_path / "bodies.mp4").exists()
+
+
+def test_a_progress_line_once_writing_takes_long(tmp_path, monkeypatch):  # type: ignore[no-untyped-def]
+    import io
+
+    from wecss.results import _animate
+
+    monkeypatch.setattr(_animate, "PROGRESS_AFTER_S", 0.0)
+    stream = io.StringIO()
+    animate(_poses(), tmp_path / "b.gif", stride=6, progress=stream)
+    assert stream.getvalue().endswith("\rframe 4/4\n")

@@ -59,3 +59,16 @@ def test_one_axis_is_a_line_and_more_axes_need_a_selection(tmp_path):  # type: i
         plot_sweep(ds, "power")
     with pytest.raises(ValueError, match="select names 'seed'"):
         plot_sweep(ds, select={"seed": 1})
+
+
+def test_a_list_sweep_is_a_line_over_its_cases():
+    import matplotlib.pyplot as plt
+
+    ds = _combined().stack(case=["sea.height", "sea.period"]).reset_index("case")
+    ds = ds.assign_coords(case=[f"case_{k}" for k in range(6)])
+    fig = plot_sweep(ds)
+    ax = fig.axes[0]
+    np.testing.assert_array_equal(ax.get_lines()[0].get_ydata(), [0.25, 0.5, 0.75, 1.0, np.nan, 3.0])
+    assert [t.get_text() for t in ax.get_xticklabels()] == [f"case_{k}" for k in range(6)]
+    assert [t.get_text() for t in ax.texts] == ["failed"] and ax.get_ylabel() == "total_power [W]"
+    plt.close(fig)
