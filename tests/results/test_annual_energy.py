@@ -148,6 +148,7 @@ def test_the_plot_writes_the_energy_in_each_bin(tmp_path):  # type: ignore[no-un
     fig = plot_annual_energy(result, tmp_path / "aep.png")
     texts = sorted(t.get_text() for t in fig.axes[1].texts)
     assert texts == ["2", "2", "?", "?"]  # 2 kW for 1000 h: 2 MWh
+    assert fig.axes[3].get_ylabel() == "energy per bin [MWh/year]" and fig.axes[2].get_ylabel() == "power matrix [W]"
     assert "annual energy 4 MWh/year" in fig._suptitle.get_text() and "% unknown" in fig._suptitle.get_text()
     assert fig.axes[0].get_xlabel() == "tp [s]" and fig.axes[0].get_ylabel() == "hs [m]"
     assert (tmp_path / "aep.png").is_file()

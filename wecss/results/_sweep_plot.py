@@ -91,13 +91,16 @@ def plot_sweep(
         ax.set_xlabel(_label(da, dims[1]) if dims[1] in da.coords else dims[1])
         ax.set_ylabel(_label(da, dims[0]) if dims[0] in da.coords else dims[0])
         statuses = np.asarray(status.values).astype(str)
+        from matplotlib import patheffects
+
+        outline = [patheffects.withStroke(linewidth=2, foreground="w")]
         for i in range(values.shape[0]):
             for j in range(values.shape[1]):
                 if statuses[i, j] in MARKS:
                     text, colour = MARKS[statuses[i, j]]
                     ax.text(j, i, text, ha="center", va="center", fontsize=8, color=colour, fontweight="bold")
                 elif np.isfinite(values[i, j]):
-                    ax.text(j, i, f"{values[i, j]:.3g}", ha="center", va="center", fontsize=7, color="w")
+                    ax.text(j, i, f"{values[i, j]:.3g}", ha="center", va="center", fontsize=8, path_effects=outline)
                 else:
                     ax.text(j, i, "NaN", ha="center", va="center", fontsize=8, color="k")
     title = ds.attrs.get("title", "wecss sweep")
