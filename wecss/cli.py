@@ -7,7 +7,8 @@ periods; ``wecss info FILE.nc`` or a database name describes a hydrodynamic data
 ``wecss run [SCENE.toml] [-o RESULT.nc]`` simulates a scene (without one: the embedded default, M4 134 in a
 JONSWAP sea) and writes the result and a PNG summary plot; ``--set sea.period=1.4`` overrides a scene value (dotted
 paths, validated by the scene). ``wecss run --from RESULT.nc`` runs a result's recorded scene and controller again
-after checking its input files' SHA-256 (``wecss.sim.scene_from_result``). ``wecss plot RESULT.nc`` plots a result.
+after checking its input files' SHA-256 (``wecss.sim.scene_from_result``). ``wecss plot RESULT.nc`` plots a result
+(a sweep's combined.nc or folder: ``wecss.results.plot_sweep``; ``--animate``: ``wecss.results.animate``).
 The commands but ``sweep`` keep dask out of their process (``wecss.dask_free``; ``run --allow-dask`` lets it in).
 
 ``wecss modes DEVICE`` prints the natural modes of a device with its flexible bodies, in air and in water
@@ -369,20 +370,76 @@ def check_outputs(outputs: dict[str, tuple[Path, str]], inputs: Mapping[str, Pat
     refuse_overwrite({f"{label} file": path for label, (path, _) in outputs.items()}, inputs)
 
 
-def _plot(result: str, png: str | None) -> int:
+def _plot(args: argparse.Namespace) -> int:
+    """``wecss plot``: a result's summary plot, a sweep's combined dataset (``combined.nc`` or its folder), or with
+    ``--animate`` an animation of a result's bodies."""
     from .results import open_result, plot_summary
 
-    picture = Path(png) if png else Path(result).with_suffix(".png")
-    check_outputs({"picture": (picture, ".png")}, inputs={"result file": Path(result)})
-    ds = open_result(result)
+    source = Path(args.result)
+    if source.is_dir():
+        if not (source / "combined.nc").is_file():
+            raise ValueError(f"the folder {str(source)!r} has no combined.nc; give a result file or a sweep's folder")
+        source = source / "combined.nc"
+    animation_options = {"--fps": args.fps, "--stride": args.stride}
+    if not args.animate and any(v is not None for v in animation_options.values()):
+        given = [k for k, v in animation_options.items() if v is not None]
+        raise ValueError(f"{' and '.join(given)} set the animation: give --animate too")
+    ds = open_result(source)
+    sweep = "sweep_mode" in ds.attrs
+    if not sweep and (args.variable is not None or args.select):
+        raise ValueError(f"--variable and --select choose what a sweep's plot shows; {str(source)!r} is no sweep")
+    if sweep:
+        if args.animate:
+            raise ValueError(f"{str(source)!r} is a sweep's combined dataset: animate one of its case files")
+        return _plot_sweep(ds, source, args)
     if "scene" not in ds.attrs or "time" not in ds.dims:
         raise ValueError(
-            f"{result!r} is not a wecss result (no 'scene' attribute or 'time' dimension): nothing to plot"
+            f"{str(source)!r} is not a wecss result (no 'scene' attribute or 'time' dimension): nothing to plot"
         )
+    if args.animate:
+        return _animate(ds, source, args)
+    picture = Path(args.output) if args.output else source.with_suffix(".png")
+    check_outputs({"picture": (picture, ".png")}, inputs={"result file": source})
     import matplotlib.pyplot as plt
 
     plt.close(plot_summary(ds, picture))
     print(f"wrote {picture}")
+    return 0
+
+
+def _plot_sweep(ds: Any, source: Path, args: argparse.Namespace) -> int:
+    from .results import plot_sweep
+
+    picture = Path(args.output) if args.output else source.with_suffix(".png")
+    check_outputs({"picture": (picture, ".png")}, inputs={"combined dataset": source})
+    select: dict[str, Any] = {}
+    for item in args.select or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            raise ValueError(f"--select takes DIM=VALUE (e.g. pto=pto_3 or sea.height=0.04); got {item!r}")
+        try:
+            select[name] = float(value)
+        except ValueError:
+            select[name] = value
+    import matplotlib.pyplot as plt
+
+    plt.close(plot_sweep(ds, args.variable or "total_power", select=select or None, path=picture))
+    print(f"wrote {picture}")
+    return 0
+
+
+def _animate(ds: Any, source: Path, args: argparse.Namespace) -> int:
+    from .results import animate, check_animation
+
+    movie = Path(args.output) if args.output else source.with_suffix(".gif")
+    suffix = movie.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise ValueError(f"the animation file must end in .gif or .mp4; got {str(movie)!r}")
+    check_outputs({"animation": (movie, suffix)}, inputs={"result file": source})
+    fps = 20 if args.fps is None else args.fps
+    stride = check_animation(ds, stride=args.stride, fps=fps)
+    animate(ds, movie, stride=stride, fps=fps)
+    print(f"wrote {movie} ({len(range(0, ds.sizes['time'], stride))} frames, every {stride} saved steps)")
     return 0
 
 
@@ -478,9 +535,20 @@ def build_parser() -> argparse.ArgumentParser:
     )  # fmt: skip
     modes.add_argument("-n", type=int, default=10, metavar="N", help="number of modes (default 10)")
     modes.add_argument("--png", help="plot the mode shapes (.png); with both media FILE-air.png and FILE-water.png")
-    plot = sub.add_parser("plot", help="the summary plot of a result file (PNG)")
-    plot.add_argument("result", help="result file (.nc)")
-    plot.add_argument("-o", "--output", help="picture (.png); default: next to the result")
+    plot = sub.add_parser(
+        "plot", help="the summary plot of a result (PNG), the plot of a sweep (PNG), or an animation (--animate)"
+    )
+    plot.add_argument("result", help="result file (.nc), or a sweep's combined.nc or its folder")
+    plot.add_argument(
+        "-o", "--output", help="picture (.png), with --animate .gif or .mp4 (ffmpeg); default: next to the input"
+    )
+    plot.add_argument("--animate", action="store_true", help="animate the bodies (side and top views) of a result")
+    plot.add_argument("--fps", type=int, help="--animate: frames per second (default 20)")
+    plot.add_argument("--stride", type=int, help="--animate: saved steps per frame (default: at most 150 frames)")
+    plot.add_argument("--variable", help="a sweep: the statistic to plot (default total_power)")
+    plot.add_argument(
+        "--select", action="append", metavar="DIM=VALUE", help="a sweep: fix a dimension beyond two (repeatable)"
+    )
     return parser
 
 
@@ -532,7 +600,7 @@ def _command(args: argparse.Namespace) -> int:
         if args.command == "sweep":
             return _sweep(args)
         if args.command == "plot":
-            return _plot(args.result, args.output)
+            return _plot(args)
         if args.command == "modes":
             return _structural_modes(args)
     except ImportError as err:

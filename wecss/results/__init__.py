@@ -1,7 +1,13 @@
-"""Analysis of results: netCDF I/O, metrics (mean power, CWR, RMS angle, RAO), fatigue (rainflow, streamed over
-many channels; stress fields and life maps; spectral: narrow band and Dirlik) and plots. (The result Dataset is
-built by the runs in ``wecss.sim``.)"""
+"""Analysis of results: netCDF I/O, annual energy (power matrix and scatter diagram), metrics (mean power,
+CWR, RMS angle, RAO), fatigue (rainflow, streamed over many channels; stress fields and life maps; spectral: narrow
+band and Dirlik), plots and animations. (The result Dataset is built by the runs in ``wecss.sim``.)"""
 
+from ._animate import animate as animate
+from ._animate import check_animation as check_animation
+from ._annual_energy import HOURS_PER_YEAR as HOURS_PER_YEAR
+from ._annual_energy import annual_energy as annual_energy
+from ._annual_energy import power_matrix as power_matrix
+from ._annual_energy_plot import plot_annual_energy as plot_annual_energy
 from ._fatigue import SECONDS_PER_YEAR as SECONDS_PER_YEAR
 from ._fatigue import Cycles as Cycles
 from ._fatigue import damage_equivalent_range as damage_equivalent_range
@@ -38,3 +44,4 @@ from ._spectral_fatigue import spectral_fatigue as spectral_fatigue
 from ._streaming_rainflow import StreamingRainflow as StreamingRainflow
 from ._stress_field import StressFieldRecorder as StressFieldRecorder
 from ._summary_plot import plot_summary as plot_summary
+from ._sweep_plot import plot_sweep as plot_sweep
