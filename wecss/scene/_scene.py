@@ -32,7 +32,7 @@ import tomllib
 from dataclasses import asdict, dataclass, field, fields
 from functools import cached_property
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from ..outputs import DEFAULT_GROUPS, GROUP_NAMES
 from ..tomlfile import read_toml
@@ -747,7 +747,7 @@ class Scene:
                     "or a dotted path such as 'sea.period'"
                 )
             if isinstance(value, kind):
-                data[key] = plain_copy(asdict(value))
+                data[key] = plain_copy(asdict(cast(Any, value)))  # a section: one of the dataclasses above
             elif isinstance(value, dict):
                 for name, item in value.items():
                     data = set_path(data, f"{key}.{name}", item)
