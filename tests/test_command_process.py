@@ -119,7 +119,7 @@ def test_dask_imported_already_is_not_kept_out(tmp_path):
 NEEDS_DASK = """
 import dask
 
-from controllers import LinearDamping
+from wecss_controllers import LinearDamping
 
 
 class NeedsDask(LinearDamping):

@@ -9,7 +9,6 @@ import time
 import numpy as np
 import pytest
 
-from controllers import MPC
 from tests.sim.scenes import scene
 from wecss.control import compile_scene
 from wecss.limits import MPC_PLANNED_FORCES, REFERENCE_EVALUATIONS, SWEEP_CASES, LimitError
@@ -17,6 +16,7 @@ from wecss.linear import linearize
 from wecss.sim import SceneError, simulate
 from wecss.sim._reference import EVALUATIONS_PER_STIFFNESS, check_stiffness, stiffness
 from wecss.sweep import Sweep
+from wecss_controllers import MPC
 
 
 def test_an_mpc_horizon_of_5000_periods_is_refused_when_made_naming_the_limit_and_the_override():

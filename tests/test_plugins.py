@@ -14,7 +14,7 @@ from wecss import plugins
 from wecss.control import available, create, registered_name
 
 TOY = '''
-from controllers import LinearDamping
+from wecss_controllers import LinearDamping
 
 
 class ToyDamping(LinearDamping):

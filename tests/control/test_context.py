@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from controllers import LinearDamping
 from tests.sim.scenes import scene
 from wecss.control import ControlContext, Measurement, available, create
 from wecss.devices import load as load_device
 from wecss.sim import compile_scene
+from wecss_controllers import LinearDamping
 
 
 @pytest.mark.parametrize("device", ["m4-134", "notc-10kw"])

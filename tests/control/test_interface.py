@@ -9,10 +9,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from controllers import LinearDamping
 from tests.sim.scenes import scene
 from wecss.control import ControlContext, Controller, Measurement, compile_scene
 from wecss.sim import PtoLimitExceeded, SceneError, simulate
+from wecss_controllers import LinearDamping
 
 M4_111 = Path(__file__).resolve().parents[2] / "wecss" / "data" / "devices" / "m4-111.toml"
 

@@ -9,11 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from controllers import MPC
 from tests.sim.scenes import scene
 from wecss.control import compile_scene
 from wecss.control.mpc import CvxpyPath, OsqpPath, Solution
 from wecss.sim import Scene, simulate
+from wecss_controllers import MPC
 
 FLOAT = Path(__file__).with_name("heaving_float.toml")  # the M4 stern float on a vertical slider
 M4_111 = Path(__file__).parents[2] / "wecss" / "data" / "devices" / "m4-111.toml"

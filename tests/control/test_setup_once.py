@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from controllers import LinearDamping
 from tests.sim.scenes import scene
 from wecss.control import ControlContext, ControlledScene, Controller, Measurement, compile_scene
 from wecss.sim import simulate
+from wecss_controllers import LinearDamping
 
 
 class Counting(Controller):

@@ -7,11 +7,11 @@ from typing import Any
 
 import numpy as np
 
-from controllers import LinearDamping
 from wecss.compiled import from_state_space
 from wecss.control import ControlContext, Controller
 from wecss.radiation import RadiationStateSpace
 from wecss.sim import CompiledScene, Scene, compile_scene
+from wecss_controllers import LinearDamping
 
 
 def scene(device: str = "m4-111", **sections: dict[str, Any]) -> Scene:

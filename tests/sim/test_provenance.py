@@ -13,12 +13,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from controllers import LinearDamping, OptimalDamping
 from wecss.cli import main
 from wecss.compiled import clear_compile_cache
 from wecss.netcdf import read_netcdf, write_netcdf
 from wecss.results import open_result
 from wecss.sim import Scene, simulate
+from wecss_controllers import LinearDamping, OptimalDamping
 
 from .scenes import HeldDamping
 
@@ -53,7 +53,7 @@ def _records(ds) -> dict[str, dict]:
 def test_the_controller_given_to_simulate_is_recorded_not_the_scenes(spec):
     ds = simulate(_scene(spec, damping=40.0), controller=LinearDamping(damping=90.0))
     assert ds.attrs["controller"] == "damping"
-    assert ds.attrs["controller_class"] == "controllers._damping.LinearDamping"
+    assert ds.attrs["controller_class"] == "wecss_controllers._damping.LinearDamping"
     assert ds.attrs["controller_source"] == "given to simulate"
     assert json.loads(ds.attrs["controller_parameters"]) == {"damping": 90.0, "stiffness": 0.0}
     assert json.loads(ds.attrs["controller_gains"]) == {"damping": [90.0], "stiffness": [0.0]}
@@ -232,5 +232,33 @@ def test_a_controller_name_that_now_makes_another_class_is_refused(spec, tmp_pat
     write_netcdf(ds, out)
     assert main(["run", "--from", str(out), "-o", str(tmp_path / "again.nc"), "-q"]) == 2
     err = capsys.readouterr().err
-    assert "was class theirpackage.Damping" in err and "controllers:LinearDamping" not in err
-    assert "now makes controllers.LinearDamping" in err
+    assert "was class theirpackage.Damping" in err and "wecss_controllers:LinearDamping" not in err
+    assert "now makes wecss_controllers.LinearDamping" in err
+
+
+@pytest.mark.parametrize("given", [False, True], ids=["scene's controller", "given to simulate"])
+def test_a_result_made_before_the_controllers_package_was_renamed_runs_again(spec, tmp_path, capsys, given):
+    """Results written before issue 31 record the built-in classes under the package's former name,
+    ``controllers``; --from reads them under ``wecss_controllers`` and says so."""
+    out = tmp_path / "old.nc"
+    simulate(_scene(spec), controller=LinearDamping(damping=90.0) if given else None, path=out).close()
+    ds = read_netcdf(out)
+    assert ds.attrs["controller_class"] == "wecss_controllers._damping.LinearDamping"
+    ds.attrs["controller_class"] = "controllers._damping.LinearDamping"  # as written before the rename
+    write_netcdf(ds, out)
+    again = tmp_path / "again.nc"
+    assert main(["run", "--from", str(out), "-o", str(again), "-q"]) == 0
+    err = capsys.readouterr().err
+    assert "controller class controllers._damping.LinearDamping is read as wecss_controllers._damping." in err
+    np.testing.assert_array_equal(open_result(again).pto_power.values, open_result(out).pto_power.values)
+
+
+def test_a_former_package_name_of_another_class_is_still_refused(spec, tmp_path, capsys):
+    """The renaming maps the module name only: a class the name does not make now is refused as before."""
+    out = tmp_path / "old.nc"
+    simulate(_scene(spec), path=out).close()
+    ds = read_netcdf(out)
+    ds.attrs["controller_class"] = "controllers._theirs.Damping"
+    write_netcdf(ds, out)
+    assert main(["run", "--from", str(out), "-o", str(tmp_path / "again.nc"), "-q"]) == 2
+    assert "was class controllers._theirs.Damping" in capsys.readouterr().err

@@ -522,13 +522,37 @@ def clear_compile_cache() -> None:
 
 def compile_plant(scene: Scene) -> CompiledScene:
     """Build everything the time loop needs from ``scene`` but the controller: the plant without PTO gains (an open
-    plant, the PTO forces its inputs). ``wecss.control.compile_scene`` attaches the scene's controller.
+    plant, the PTO forces its inputs). ``wecss.control.compile_scene`` attaches the scene's controller;
+    ``wecss.linear.linearize`` of the result is the open plant's linear model (``docs/control_design.md``).
+
+    Devices, radiation fits and radiation memories are kept in memory between calls (:func:`clear_compile_cache`),
+    so compiling the same device again in another sea state or with another step costs little.
+
+    Parameters
+    ----------
+    scene : Scene
+        Any scene; its ``controller`` section is not read (nor the device's default PTO damping, which is the
+        ``damping`` controller's default). Its step must be chosen: a scene with ``solver.tolerance`` is compiled
+        after ``wecss.sim.choose_step``.
+
+    Returns
+    -------
+    CompiledScene
+        ``device`` (bodies, joints, ``ptos``), ``coupling`` (the hydrodynamic database about the bodies' centres of
+        mass), ``plant`` (the arrays of the time loop, ``pto_damping`` and ``pto_stiffness`` zero), ``q0`` (the
+        static equilibrium [m, rad]), ``stiffness`` (the static stiffness there [SI per generalised coordinate]),
+        ``waves``, ``spectrum`` and ``excitation`` of the sea state (None in calm water), the radiation memory
+        and its fit, ``dt`` [s], ``n_steps`` and ``notes`` (what was dropped or assumed).
 
     Raises
     ------
+    TypeError
+        If ``scene`` is not a :class:`~wecss.scene.Scene`.
     SceneError
-        On unknown names, missing files, periods outside the database.
+        On unknown names, missing files, periods outside the database, a step not yet chosen.
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"compile_plant takes a wecss.scene.Scene; got {type(scene).__name__}")
     name, hydro_name = scene.device.name, scene.device.hydro
     sources = _device_sources(name, hydro_name)
     body_to_body = scene.radiation.body_to_body

@@ -1,4 +1,4 @@
-"""Controllers by name: the ``wecss.controllers`` entry-point group, where the built-ins of the ``controllers``
+"""Controllers by name: the ``wecss.controllers`` entry-point group, where the built-ins of the ``wecss_controllers``
 package and third-party packages register theirs (wecss itself never imports a plugin)."""
 
 from __future__ import annotations

@@ -5,6 +5,8 @@ or as frozen (hashable) dataclasses and validated on construction; and the regis
 from ._errors import SceneError as SceneError
 from ._hydrodynamics import Hydrodynamics as Hydrodynamics
 from ._hydrodynamics import Initial as Initial
+from ._paths import plain_copy as plain_copy
+from ._paths import set_path as set_path
 from ._runners import RADIATION_METHODS as RADIATION_METHODS
 from ._runners import Capabilities as Capabilities
 from ._runners import Runner as Runner

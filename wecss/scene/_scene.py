@@ -32,7 +32,7 @@ import tomllib
 from dataclasses import asdict, dataclass, field, fields
 from functools import cached_property
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from ..outputs import DEFAULT_GROUPS, GROUP_NAMES
 from ..tomlfile import read_toml
@@ -40,6 +40,7 @@ from ._checks import check_choice, check_keys, check_types
 from ._errors import SceneError
 from ._hydrodynamics import Hydrodynamics, Initial
 from ._parameters import Parameters
+from ._paths import plain_copy, set_path
 from ._runners import RADIATION_METHODS, Runner, runner, tolerance_runners
 
 SEA_KINDS = ("regular", "jonswap", "pierson-moskowitz", "tabulated", "elevation", "calm")
@@ -800,6 +801,49 @@ class Scene:
         except UnicodeDecodeError:
             raise SceneError(f"{path}: not a text file (a scene is a UTF-8 TOML file)") from None
         return cls.from_dict(data, base=path.parent)
+
+    def replace(self, **changes: Any) -> Scene:
+        """A copy of the scene with ``changes``, validated as a new scene is.
+
+        Each keyword is a dotted path, as ``wecss run --set`` takes (``"sea.period"``,
+        ``"controller.parameters.damping"``; passed as ``**{"sea.period": 1.4}``), or a section's name with the
+        section (``sea=SeaState(...)``) or a dict of the keys of the section to change (``sea={"period": 1.4}``:
+        the other keys keep their values). Values are in the scene's units (SI; durations and steps also relative,
+        ``"100 Tp"``). Changes apply in the order given.
+
+        Example::
+
+            steeper = scene.replace(sea={"height": 0.06, "period": 1.4})
+            damped = scene.replace(**{"controller.parameters.damping": 8.0})
+
+        Raises
+        ------
+        SceneError
+            For an unknown section or key, a section of the wrong type, or a value the scene refuses (the message
+            names the field, the value and what is accepted).
+        """
+        data = plain_copy(self.to_dict())
+        for key, value in changes.items():
+            if "." in key:
+                data = set_path(data, key, value)
+                continue
+            kind = _SECTIONS.get(key)
+            if kind is None:
+                raise SceneError(
+                    f"Scene.replace: unknown section or path {key!r}; accepted: a section ({', '.join(_SECTIONS)}) "
+                    "or a dotted path such as 'sea.period'"
+                )
+            if isinstance(value, kind):
+                data[key] = plain_copy(asdict(cast(Any, value)))  # a section: one of the dataclasses above
+            elif isinstance(value, dict):
+                for name, item in value.items():
+                    data = set_path(data, f"{key}.{name}", item)
+            else:
+                raise SceneError(
+                    f"Scene.replace: {key} takes a {kind.__name__} or a dict of its keys; got {value!r} "
+                    f"({type(value).__name__})"
+                )
+        return Scene.from_dict(data)
 
     def to_dict(self) -> dict[str, Any]:
         """Nested plain dict (round-trips through :meth:`from_dict`)."""

@@ -1,6 +1,7 @@
 """A run made again from its result file (``wecss run --from RESULT.nc``): the recorded scene, its input files
 found and checked against their SHA-256 (``wecss.provenance``), and the controller that ran, made again from its
-registered name and recorded parameters."""
+registered name and recorded parameters (a class recorded under the built-in controllers' former package name,
+``controllers``, is read under its name now, ``wecss_controllers``, with a note)."""
 
 from __future__ import annotations
 
@@ -27,6 +28,25 @@ SCENE_PATH_FIELDS = {
 }
 """The scene fields that may hold a file's path, each with the end of the field of its input record
 (``wecss.compiled.recorded_inputs``)."""
+
+
+RENAMED_MODULES: dict[str, str] = {"controllers": "wecss_controllers"}
+"""Top-level modules of registered controllers renamed since results recorded them (``controller_class``): the
+built-in controllers imported as ``controllers`` before issue 31, a name that collided with any user folder called
+``controllers`` on ``sys.path``."""
+
+
+def renamed_class(recorded: str) -> tuple[str, str | None]:
+    """The class path a result's ``controller_class`` stands for now (``controllers._damping.LinearDamping`` ->
+    ``wecss_controllers._damping.LinearDamping``), and a note saying so (None when the name did not change)."""
+    top, dot, rest = recorded.partition(".")
+    if not dot or top not in RENAMED_MODULES:
+        return recorded, None
+    now = f"{RENAMED_MODULES[top]}.{rest}"
+    return now, (
+        f"the run's controller class {recorded} is read as {now} (the built-in controllers' package was renamed "
+        f"from {top!r} to {RENAMED_MODULES[top]!r})"
+    )
 
 
 def _is_path(key: str, value: object) -> bool:
@@ -79,7 +99,8 @@ def scene_from_result(path: str | os.PathLike[str]) -> tuple[Scene, list[str]]:
         scene = dataclasses.replace(scene, controller=_given_controller(attrs, scene.controller.dt))
     elif "controller_class" in attrs:
         _same_class(scene.controller.name, str(attrs["controller_class"]))
-    return scene, found
+    note = renamed_class(str(attrs.get("controller_class", "")))[1]
+    return scene, found + ([] if note is None else [note])
 
 
 def fit_difference(attrs: Mapping[str, object], controlled: ControlledScene) -> str | None:
@@ -128,7 +149,7 @@ def _same_class(name: str, recorded: str) -> None:
             module, _, attr = ep.value.partition(":")
             now = f"{module}.{attr}"
             loaded = ep.load()
-            if recorded not in (now, f"{loaded.__module__}.{loaded.__qualname__}"):
+            if renamed_class(recorded)[0] not in (now, f"{loaded.__module__}.{loaded.__qualname__}"):
                 raise ValueError(
                     f"the controller {name!r} of this run was class {recorded}; the name now makes {now}: install the "
                     "package that registered it, or run the scene from Python with that class"
@@ -153,7 +174,7 @@ def _given_controller(attrs: dict[str, object], dt: float | str | None) -> Contr
             f"cannot hold ({opaque}): {how}"
         )
     now = create(name, **parameters)
-    if registered_name(now) != name or f"{type(now).__module__}.{type(now).__qualname__}" != cls:
+    if registered_name(now) != name or f"{type(now).__module__}.{type(now).__qualname__}" != renamed_class(cls)[0]:
         raise ValueError(
             f"the controller name {name!r} now makes {type(now).__module__}.{type(now).__qualname__}, not the class "
             f"that ran ({cls}): {how}"

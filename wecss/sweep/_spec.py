@@ -31,43 +31,10 @@ from pathlib import Path
 from typing import Any
 
 from ..limits import SWEEP_ANNOUNCE_CASES, SWEEP_CASES, beyond
-from ..scene import Scene, SceneError, default_scene_path
+from ..scene import Scene, SceneError, default_scene_path, plain_copy, set_path
 from ..tomlfile import read_toml
 
 SWEEP_MODES = ("grid", "list")
-
-
-def set_path(data: dict[str, Any], path: str, value: Any) -> dict[str, Any]:
-    """A copy of the scene dict ``data`` with the dotted ``path`` set to ``value``.
-
-    Paths such as ``"sea.period"`` or ``"controller.parameters.damping"``.
-
-    Raises
-    ------
-    SceneError
-        If the path has fewer than two parts or crosses a value that is not a table.
-    """
-    parts = path.split(".") if isinstance(path, str) else []
-    if len(parts) < 2 or not all(parts):
-        raise SceneError(f"a scene path is 'section.key' (such as 'sea.period'); got {path!r}")
-    out = _plain(data)
-    node = out
-    for depth, part in enumerate(parts[:-1]):
-        child = node.setdefault(part, {})
-        if not isinstance(child, dict):
-            raise SceneError(f"{'.'.join(parts[: depth + 1])} is a value ({child!r}), not a table: cannot set {path!r}")
-        node = child
-    node[parts[-1]] = value
-    return out
-
-
-def _plain(value: Any) -> Any:
-    """A deep copy with every table a plain (writable) dict."""
-    if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_plain(v) for v in value]
-    return value
 
 
 def parse_value(text: str) -> Any:
@@ -86,7 +53,7 @@ def apply_overrides(scene: Scene, assignments: Sequence[str]) -> Scene:
     SceneError
         On an assignment without ``=``, an unknown path or a bad value (the scene's own message).
     """
-    data = _plain(scene.to_dict())
+    data = plain_copy(scene.to_dict())
     for text in assignments:
         path, sep, value = text.partition("=")
         if not sep:
@@ -243,7 +210,7 @@ class Sweep:
         else:
             raise SceneError(f"scene: give a table of scene sections or a scene file; got {scene!r}")
         return cls(
-            base=_plain(scene_obj.to_dict()),
+            base=plain_copy(scene_obj.to_dict()),
             axes=tuple(axes),
             mode=table.get("mode", "grid"),
             name=str(table.get("name", "sweep")),
@@ -286,7 +253,7 @@ class Sweep:
         """From a scene (default: the embedded default) and ``{path: values}``."""
         scene = scene if scene is not None else Scene.from_toml(default_scene_path())
         axes_ = tuple((p, tuple(v)) for p, v in axes.items())
-        return cls(_plain(scene.to_dict()), axes_, mode=mode, name=name, allow_large=allow_large)
+        return cls(plain_copy(scene.to_dict()), axes_, mode=mode, name=name, allow_large=allow_large)
 
 
 def _flatten(table: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
