@@ -13,18 +13,23 @@ a dual active-set method started from the active set ADMM finds (``_admm``), wit
 bounds the optimum from above, the primal value from below, and their gap is reported. The electrical objective
 of the asymmetric efficiency is not convex: it is
 P_elec = eta P - (1 / eta - eta) max(-P, 0), and max(f v, 0) <= (alpha f + v / alpha)^2 / 4 for any alpha > 0,
-with equality at a point (f_0, v_0) for alpha^2 = |v_0 / f_0|; so each step of a convex-concave procedure solves
+with equality at a point (f_0, v_0) for alpha^2 = |v_0 / f_0|. A stationary point of the whole objective is found
+first by nonconvex ADMM (``_electrical_admm``: the exact proximal step of max(f v, 0) per sample), and taken as the
+start where it keeps the limits (to GUESS_VIOLATION) and beats the mechanical optimum; then each step of a
+convex-concave procedure solves
 the convex programme with that majorant at the samples where the present trajectory supplies power (where the new
 one supplies power elsewhere and the step did not gain, with the majorant there too, solved again: then it cannot
 lose), by ADMM (``_admm``: the penalty rows cost nothing per iteration, where the exact solve factors a dense matrix
 of them all), each programme to a tenth of the last step's relative gain (from ADMM_LOOSE down to ADMM_TIGHT),
-certified by its duality gap. It stops at a stationary point (a local optimum), evaluated at the samples, or after
-CCP_ITERATIONS steps: the procedure's gains shrink slowly (SS5 of the Wavestar: 2.8e-6 W per step after 60 steps,
-80 s). eta times the mechanical optimum bounds it from above (P_elec <= eta P pointwise).
+certified by its duality gap; a step that loses is refused. It stops when a step gains less than CCP_TOLERANCE
+(a local optimum), evaluated at the samples, or after CCP_ITERATIONS steps: the procedure's gains shrink slowly
+(alone from the mechanical optimum, SS5 of the Wavestar gained 2.8e-6 W per step after 60 steps, in 80 s; from
+ADMM's start 4 steps, 8 s). eta times the mechanical optimum bounds it from above (P_elec <= eta P pointwise).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import time as _time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -33,7 +38,7 @@ import numpy as np
 
 from ._electrical_admm import electrical_admm
 from ._periodic import PeriodicResponse, periodic_response
-from ._spectral_qp import Penalties, Signal, SpectralProgramme, SpectralSolution
+from ._spectral_qp import FEASIBILITY, Penalties, Signal, SpectralProgramme, SpectralSolution
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -42,11 +47,16 @@ if TYPE_CHECKING:
 
 OBJECTIVES = ("mechanical", "copper", "electrical")
 
-CCP_TOLERANCE: float = 1e-7
-"""The convex-concave procedure stops when an iteration raises the electrical power by less than this share."""
+CCP_TOLERANCE: float = 1e-5
+"""The convex-concave procedure stops when an iteration raises the electrical power by less than this share (its
+gains shrink slowly: 1e-7 took 60 steps and 3 minutes on the Wavestar's SS1)."""
 
 CCP_ITERATIONS: int = 60
 """Most iterations of the convex-concave procedure."""
+
+GUESS_VIOLATION: float = 1e-4
+"""The largest limit violation (a share of the limit) at which the nonconvex ADMM's force is taken as the point the
+procedure's first majorant is made at (kept as a result only within FEASIBILITY of the limits)."""
 
 ADMM_LOOSE: float = 1e-4
 ADMM_TIGHT: float = 1e-8
@@ -421,28 +431,33 @@ def _electrical(
     weight = supply / (2.0 * n)  # w e^2 / 2 = supply e^2 / (4 N)
     # a stationary point of the whole electrical objective by nonconvex ADMM, kept where it beats the mechanical optimum
     plain = SpectralProgramme(periodic, efficiency * hermitian, efficiency * linear, signals)
-    force, admm_iterations = electrical_admm(plain, supply / n)
+    force, admm_iterations = electrical_admm(plain, supply / n, tolerance=1e-5)
     values = plain.values(force)
     primal, e = plain.objective(force, values)
     violation = float(max(0.0, -float(np.min(plain._slacks(values), initial=0.0))))
-    guess = SpectralSolution(force, primal, np.nan, np.nan, violation, 0, admm_iterations, False, values, e, "ADMM")
-    solution = start
+    guess = SpectralSolution(
+        force, primal, np.nan, np.nan, violation, 0, admm_iterations, False, values, e, "ADMM (nonconvex)"
+    )
     iterations = start.iterations + admm_iterations
-    if violation <= 1e-6 and _mean_electrical(guess.values, efficiency) > _mean_electrical(start.values, efficiency):
-        solution = guess
     state = None  # where the last ADMM solve ended: the next, similar, programme starts there
 
     def electrical(values: list[np.ndarray]) -> float:
         return _mean_electrical(values, efficiency)
 
-    value = electrical(solution.values)
-    force_rms = np.sqrt(np.mean(solution.values[0] ** 2, axis=0)) + 1e-300
-    rate_rms = np.sqrt(np.mean(solution.values[2] ** 2, axis=0)) + 1e-300
+    # solution: the best trajectory kept; point: the one the majorant is made at
+    solution, value = start, electrical(start.values)
+    point = start
+    if violation <= GUESS_VIOLATION:
+        restored = _within_limits(periodic, efficiency * hermitian, signals, guess)
+        if electrical(restored.values) > value:
+            solution, value, point = restored, electrical(restored.values), restored
+    force_rms = np.sqrt(np.mean(point.values[0] ** 2, axis=0)) + 1e-300
+    rate_rms = np.sqrt(np.mean(point.values[2] ** 2, axis=0)) + 1e-300
     typical = rate_rms / force_rms  # |v / f| scale per PTO
     ccp = 0
     tolerance = ADMM_LOOSE  # each programme is solved to a tenth of the last step's gain, down to ADMM_TIGHT
     for ccp in range(1, CCP_ITERATIONS + 1):  # noqa: B007 (the count is returned)
-        f, v = solution.values[0], solution.values[2]
+        f, v = point.values[0], point.values[2]
         alpha = np.sqrt(np.clip(np.abs(v) / np.maximum(np.abs(f), 1e-300), 1e-4 * typical, 1e4 * typical))
         rows = (f * v > 0) | (np.abs(f * v) <= 1e-9 * float(np.mean(np.abs(f * v))))  # supplying (or at zero)
         while True:
@@ -468,7 +483,26 @@ def _electrical(
             tolerance = max(0.01 * tolerance, ADMM_TIGHT)
             continue
         solution, value = trial, trial_value
+        point = trial
         if improved <= CCP_TOLERANCE * max(abs(value), 1e-300) and tolerance <= ADMM_TIGHT:
             break
         tolerance = float(np.clip(0.1 * improved / max(abs(value), 1e-300), ADMM_TIGHT, ADMM_LOOSE))
+    if solution.violation > FEASIBILITY:  # an ADMM solution a little past a limit (its tolerance): the nearest within
+        solution = _within_limits(periodic, efficiency * hermitian, signals, solution)
+        value = electrical(solution.values)
     return solution, value, iterations, ccp
+
+
+def _within_limits(
+    periodic: PeriodicResponse, hessian: np.ndarray, signals: list[Signal], near: SpectralSolution
+) -> SpectralSolution:
+    """The force within the limits nearest ``near``'s in the norm of ``hessian`` (the exact, certified solve of
+    min 1/2 (F - G)^H H (F - G)): an ADMM solution's small violations removed at a cost of the same order in power;
+    its gap is that of the projection, so reported as NaN."""
+    if near.violation <= FEASIBILITY:
+        return near
+    target = np.einsum("mpq,mq->mp", hessian, near.force)
+    projected, _ = SpectralProgramme(periodic, hessian, target, signals).solve_robust()
+    return dataclasses.replace(
+        projected, primal=np.nan, dual=np.nan, gap=np.nan, method=f"{near.method} (projected onto the limits)"
+    )
