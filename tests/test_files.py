@@ -91,11 +91,15 @@ def test_run_refuses_bad_outputs_before_simulating(tmp_path, capsys, args, messa
 
 
 def test_plot_refuses_to_overwrite_its_input(tmp_path, capsys):
+    scene = tmp_path / "s.toml"
+    scene.write_text('[sea]\nduration = "2 Tp"\nramp = 0.0\n[outputs]\nvariables = ["pto"]\n')
     result = tmp_path / "r.nc"
-    write_netcdf(xr.Dataset({"y": ("t", np.arange(3.0))}), result)
+    assert main(["run", str(scene), "-q", "-o", str(result), "--png", str(tmp_path / "r.png")]) == 0
+    before = result.read_bytes()
+    capsys.readouterr()
     assert main(["plot", str(result), "-o", str(result)]) == 2
     assert "must end in .png" in capsys.readouterr().err
-    assert read_netcdf(result).y.size == 3
+    assert result.read_bytes() == before
 
 
 def test_os_errors_reach_the_user_without_a_traceback(tmp_path, capsys, monkeypatch):

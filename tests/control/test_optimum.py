@@ -303,6 +303,7 @@ def test_admm_solves_a_penalised_programme_as_the_interior_point_method_does():
     """One step of the electrical objective's procedure (force and stroke limits, the majorant's penalty rows where
     the mechanical optimum supplies power): ADMM's solution against the interior-point solve of the same programme,
     and its dual value a lower bound on that programme's minimum."""
+    from wecss.control.design._admm import solve_admm, solve_robust
     from wecss.control.design._spectral_qp import Penalties
 
     model, omega, amplitude = _record()
@@ -315,7 +316,7 @@ def test_admm_solves_a_penalised_programme_as_the_interior_point_method_does():
     }
     hermitian = 0.5 * (periodic.admittance + np.conj(np.swapaxes(periodic.admittance, 1, 2)))
     signals = _signals(periodic, limits)
-    mechanical, _ = SpectralProgramme(periodic, hermitian, -0.5 * periodic.free_rate, signals).solve_robust()
+    mechanical, _ = solve_robust(SpectralProgramme(periodic, hermitian, -0.5 * periodic.free_rate, signals))
     f, v = mechanical.values[0], mechanical.values[2]
     j, p = np.nonzero(f * v > 0)
     assert j.size > 10
@@ -327,7 +328,7 @@ def test_admm_solves_a_penalised_programme_as_the_interior_point_method_does():
     )  # fmt: skip
     programme = SpectralProgramme(periodic, eta * hermitian, -0.5 * eta * periodic.free_rate, signals, penalties)
     conic = programme.solve_conic()
-    admm, _ = programme.solve_admm(tolerance=1e-8)
+    admm, _ = solve_admm(programme, tolerance=1e-8)
     assert admm.method == "ADMM"
     assert admm.primal == pytest.approx(conic.primal, rel=1e-6)
     assert admm.dual <= conic.primal + 1e-12 * abs(conic.primal)  # a lower bound on the minimum

@@ -28,12 +28,10 @@ F is feasible; the solution reports both, their gap and F's largest violation.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from ._spectral_qp import SpectralProgramme
+from ._spectral_qp import SpectralProgramme, SpectralSolution
 
 RELAXATION: float = 1.6
 """Over-relaxation of the z step."""
@@ -278,3 +276,55 @@ def _initial_rho(hessian: np.ndarray, gram: np.ndarray, n: int) -> float:
     h = float(np.mean(np.abs(np.trace(hessian, axis1=1, axis2=2))))
     g = 0.5 * n * float(np.mean(np.abs(np.trace(gram, axis1=1, axis2=2))))
     return h / g if g > 0 and h > 0 else 1.0
+
+
+def solve_robust(
+    programme: SpectralProgramme, active: np.ndarray | None = None
+) -> tuple[SpectralSolution, np.ndarray | None]:
+    """``programme.solve`` from ``active``, or when none is given from the active set ADMM finds
+    (:func:`admm_active_set`: the dual active-set iteration started from the unconstrained optimum's violations
+    cycles where many limits bind together), or ``programme.solve_conic`` where the active-set iteration does not
+    settle (then no active set is returned)."""
+    if active is None and programme.constrained:
+        active, _ = admm_active_set(programme)
+    try:
+        return programme.solve(active)
+    except RuntimeError:
+        return programme.solve_conic(), None
+
+
+def solve_admm(
+    programme: SpectralProgramme, state: AdmmState | None = None, tolerance: float = 1e-7, max_iterations: int = 20000
+) -> tuple[SpectralSolution, AdmmState]:
+    """``programme`` solved by ADMM (module docstring): every iteration FFTs and per-harmonic solves, however many
+    penalty rows (where the exact solve factors a dense matrix of them all); certified by the Lagrangian dual value
+    of its multipliers. The force may violate a limit by about ``tolerance`` of the limit (reported).
+
+    Parameters
+    ----------
+    programme : SpectralProgramme
+    state : AdmmState or None
+        Start from the end of a similar programme's solve.
+    tolerance : float
+        The residuals' and the duality gap's share at which it stops [-].
+    max_iterations : int
+
+    Returns
+    -------
+    SpectralSolution, AdmmState
+        The solution (method "ADMM") and where ADMM ended.
+
+    Raises
+    ------
+    PenaltiesNotSeparable
+        If the penalties are not of the form ADMM takes (see :class:`Splitting`).
+    """
+    result = admm(programme, tolerance, max_iterations, state, certify_every=25)
+    values = programme.values(result.force)
+    primal, e = programme.objective(result.force, values)
+    violation = float(max(0.0, -float(np.min(programme._slacks(values), initial=0.0))))
+    solution = SpectralSolution(
+        result.force, primal, result.dual, primal - result.dual, violation, int(np.sum(result.active)),
+        result.iterations, False, values, e, "ADMM",
+    )  # fmt: skip
+    return solution, result.state

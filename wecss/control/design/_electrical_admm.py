@@ -18,14 +18,10 @@ times the mechanical optimum still bounds the result from above.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from ._admm import Splitting, _initial_rho
-
-if TYPE_CHECKING:
-    from ._spectral_qp import SpectralProgramme
+from ._spectral_qp import SpectralProgramme
 
 RELAXATION: float = 1.0
 """No over-relaxation: with it (1.6) the nonconvex iteration did not settle on the Wavestar (SS5: 20,000 iterations,

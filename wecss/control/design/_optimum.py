@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._admm import solve_admm, solve_robust
 from ._electrical_admm import electrical_admm
 from ._periodic import PeriodicResponse, periodic_response
 from ._spectral_qp import FEASIBILITY, Penalties, Signal, SpectralProgramme, SpectralSolution
@@ -328,12 +329,12 @@ def noncausal_optimum(
     linear = -0.5 * periodic.free_rate
     if objective == "copper":
         programme = SpectralProgramme(periodic, hermitian + np.diag(loss)[None], linear, signals)
-        solution, _ = programme.solve_robust()
+        solution, _ = solve_robust(programme)
         iterations, ccp = solution.iterations, 0
         value, bound = -solution.primal, -solution.dual
     else:
         mechanical = SpectralProgramme(periodic, hermitian, linear, signals)
-        solution, _ = mechanical.solve_robust()
+        solution, _ = solve_robust(mechanical)
         iterations, ccp = solution.iterations, 0
         value, bound = -solution.primal, -solution.dual
         if objective == "electrical" and efficiency is not None and efficiency < 1:
@@ -468,7 +469,7 @@ def _electrical(
                 pto=p, point=j, weight=np.full(j.size, weight),
             )  # fmt: skip
             programme = SpectralProgramme(periodic, efficiency * hermitian, efficiency * linear, signals, penalties)
-            trial, state = programme.solve_admm(state, tolerance)
+            trial, state = solve_admm(programme, state, tolerance)
             iterations += trial.iterations
             trial_value = electrical(trial.values)
             new = (trial.values[0] * trial.values[2] > 0) & ~rows  # supplying where the majorant is not
@@ -502,7 +503,7 @@ def _within_limits(
     if near.violation <= FEASIBILITY:
         return near
     target = np.einsum("mpq,mq->mp", hessian, near.force)
-    projected, _ = SpectralProgramme(periodic, hessian, target, signals).solve_robust()
+    projected, _ = solve_robust(SpectralProgramme(periodic, hessian, target, signals))
     return dataclasses.replace(
         projected, primal=np.nan, dual=np.nan, gap=np.nan, method=f"{near.method} (projected onto the limits)"
     )

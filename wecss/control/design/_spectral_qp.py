@@ -22,12 +22,12 @@ by one inverse FFT per signal. The active set is found by the primal-dual active
 and Kunisch 2002: rows whose multiplier stays positive, plus rows violated, until the set repeats), with a
 monotone fallback (add the violated rows, drop the negative multipliers) if it cycles. Started from the
 unconstrained optimum's violations it can cycle where many limits bind together (the Wavestar's SS3 and SS6, and a
-one-DOF body with force and stroke limits); :meth:`SpectralProgramme.solve_robust` therefore starts it from the
+one-DOF body with force and stroke limits); ``_admm.solve_robust`` therefore starts it from the
 active set ADMM finds (``_admm``: FFTs and per-harmonic solves only), from which it settles in one iteration in
 every case tried.
 
-Where that iteration does not settle (it can cycle when several limits bind together), :meth:`SpectralProgramme.
-solve_robust` solves the same programme by an interior-point method instead (cvxpy with Clarabel, in the real and
+Where that iteration does not settle (it can cycle when several limits bind together), ``_admm.solve_robust``
+solves the same programme by an interior-point method instead (cvxpy with Clarabel, in the real and
 imaginary parts of the F_m, the signals as dense matrices: for programmes of up to CONIC_ENTRIES entries).
 
 Certificate: for any y >= 0 on the constraints the dual value D(y) bounds the programme's minimum from below, and the
@@ -42,7 +42,6 @@ from typing import Any
 
 import numpy as np
 
-from ._admm import AdmmState, admm, admm_active_set
 from ._periodic import PeriodicResponse
 
 FEASIBILITY: float = 1e-9
@@ -129,7 +128,7 @@ class SpectralSolution:
     penalty_values : ndarray (P,)
         e_r at the solution.
     method : str
-        "active set" (:meth:`SpectralProgramme.solve`), "ADMM" (:meth:`SpectralProgramme.solve_admm`) or "interior
+        "active set" (:meth:`SpectralProgramme.solve`), "ADMM" (``_admm.solve_admm``) or "interior
         point" (:meth:`SpectralProgramme.solve_conic`).
     """
 
@@ -296,18 +295,6 @@ class SpectralProgramme:
         return (self._bound[:, :, None, :] - u) / self._size[:, :, None, :]
 
     # --- the solve -------------------------------------------------------------------------------------------------
-    def solve_robust(self, active: np.ndarray | None = None) -> tuple[SpectralSolution, np.ndarray | None]:
-        """:meth:`solve` from ``active``, or when none is given from the active set ADMM finds (``_admm``: the
-        dual active-set iteration started from the unconstrained optimum's violations cycles where many limits bind
-        together), or :meth:`solve_conic` where the active-set iteration does not settle (then no active set is
-        returned)."""
-        if active is None and self.constrained:
-            active, _ = admm_active_set(self)
-        try:
-            return self.solve(active)
-        except RuntimeError:
-            return self.solve_conic(), None
-
     def solve(self, active: np.ndarray | None = None) -> tuple[SpectralSolution, np.ndarray]:
         """The programme's solution and its active set (start the next, similar, programme from it).
 
@@ -375,43 +362,6 @@ class SpectralProgramme:
             force, primal, dual, primal - dual, violation, int(np.sum(active)), iteration, fallback, values, e
         )
         return solution, active
-
-    # --- the same programme by ADMM, certified ------------------------------------------------------------------
-    def solve_admm(
-        self, state: AdmmState | None = None, tolerance: float = 1e-7, max_iterations: int = 20000
-    ) -> tuple[SpectralSolution, AdmmState]:
-        """The programme solved by ADMM (``_admm``): every iteration FFTs and per-harmonic solves, however many
-        penalty rows (where the exact solve factors a dense matrix of them all); certified by the Lagrangian dual
-        value of its multipliers. The force may violate a limit by about ``tolerance`` of the limit (reported).
-
-        Parameters
-        ----------
-        state : AdmmState or None
-            Start from the end of a similar programme's solve.
-        tolerance : float
-            The residuals' and the duality gap's share at which it stops [-].
-        max_iterations : int
-
-        Returns
-        -------
-        SpectralSolution, AdmmState
-            The solution (method "ADMM") and where ADMM ended.
-
-        Raises
-        ------
-        PenaltiesNotSeparable
-            If the penalties are not of the form ADMM takes (see ``_admm.Splitting``).
-        """
-        result = admm(self, tolerance, max_iterations, state, certify_every=25)
-        values = self.values(result.force)
-        primal, e = self.objective(result.force, values)
-        slack = self._slacks(values)
-        violation = float(max(0.0, -float(np.min(slack, initial=0.0))))
-        solution = SpectralSolution(
-            result.force, primal, result.dual, primal - result.dual, violation, int(np.sum(result.active)),
-            result.iterations, False, values, e, "ADMM",
-        )  # fmt: skip
-        return solution, result.state
 
     # --- the same programme by an interior-point method (cvxpy, Clarabel) ------------------------------------------
     def synthesis(self, k: int) -> np.ndarray:
