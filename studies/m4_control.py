@@ -195,8 +195,11 @@ def main() -> None:
             "default penalties, its plan on the balanced truncation of the radiation states (error 1e-3). Mean "
             "absorbed power over the final half per PTO and in total, capture width ratio, RMS hinge angle per PTO, "
             "the share of the complex-conjugate bound of the same wave components (unconstrained, so above what any "
-            "limited controller can reach), and the time the hinges spent past their limit. Plot: "
-            "`docs/m4_control.png`.",
+            "limited controller can reach), the share of the constrained non-causal optimum (within the stroke limits, "
+            "on the linear model, over the run's periodic record) and the time the hinges spent past their limit. "
+            "Both shares divide the final half's mean power by a value of the whole record, so a run whose final "
+            "half carries more energy than the record on average, or that passes the limits (against the end stop), "
+            "can exceed 1. Plot: `docs/m4_control.png`.",
             "",
             table(rows, pto_names(device)),
             "",
