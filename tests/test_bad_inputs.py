@@ -72,6 +72,19 @@ def test_other_non_numbers_in_numeric_fields_are_refused(tmp_path, value):
         Device.from_spec(path)
 
 
+def test_a_full_inertia_matrix_is_still_accepted_and_a_nan_inside_it_is_not(tmp_path):
+    """The spec allows an inertia as 3 x 3 (a nested list): the check of numbers reads its leaves."""
+    full = "inertia = [[0.204, 0.0, 0.0], [0.0, 0.204, 0.0], [0.0, 0.0, 0.204]]"
+    device = Device.from_spec(_spec_with(tmp_path, "inertia = [0.204, 0.204, 0.204]", full))
+    diagonal = Device.from_spec(
+        _spec_with(tmp_path, "inertia = [0.204, 0.204, 0.204]", "inertia = [0.204, 0.204, 0.204]")
+    )
+    assert np.array_equal(device.model.bodies[0].inertia, diagonal.model.bodies[0].inertia)
+    bad = full.replace("[0.0, 0.204, 0.0]", "[0.0, nan, 0.0]")
+    with pytest.raises(DeviceSpecError, match=r"bodies\[0\]: inertia = .*: expected a finite number"):
+        Device.from_spec(_spec_with(tmp_path, "inertia = [0.204, 0.204, 0.204]", bad))
+
+
 def test_a_binary_device_spec_is_refused_as_not_a_text_file(tmp_path, capsys):
     path = tmp_path / "spec.toml"
     path.write_bytes(b'name = "x"\n\xff\xfe\x00 = 1\n')

@@ -350,3 +350,37 @@ def test_an_admittance_rounded_below_passivity_is_floored_and_counted():
     assert np.array_equal(out[0], good) and np.array_equal(out[2], good)
     assert np.allclose(out[1], q @ np.diag([1.0, 0.5, PASSIVITY_FLOOR]) @ q.conj().T, atol=1e-14)
     np.linalg.cholesky(out[1])
+
+
+def test_a_limit_on_one_pto_of_two_leaves_the_other_free():
+    """Two copies of the one-DOF body, uncoupled, as two PTOs; the force limited on the first only (inf on the
+    second: no limit): each PTO's optimum is that of the body alone with its own limit, and the electrical objective
+    stays finite (a PTO without a bound was scaled by 1e-300 and made ADMM's force NaN)."""
+    import dataclasses
+
+    model, omega, amplitude = _record()
+    one = periodic_response(model, omega, amplitude, PERIOD)
+    limit = 0.5 * np.max(np.abs(noncausal_optimum(model, omega, amplitude, PERIOD).pto_force))
+    two = dataclasses.replace(
+        one,
+        free_rate=np.concatenate([one.free_rate, one.free_rate], axis=1),
+        admittance=np.einsum("mpq,rs->mrpsq", one.admittance, np.eye(2)).reshape(one.n_harmonics, 2, 2),
+        stroke_at_equilibrium=np.zeros(2),
+    )
+    hermitian = 0.5 * (two.admittance + np.conj(np.swapaxes(two.admittance, 1, 2)))
+    limits = {
+        "force_limit": np.array([limit, np.inf]),
+        "stroke_limit": np.full(2, np.inf),
+        "rate_limit": np.full(2, np.inf),
+    }
+    from wecss.control.design._admm import solve_robust
+
+    both, _ = solve_robust(SpectralProgramme(two, hermitian, -0.5 * two.free_rate, _signals(two, limits)))
+    alone = noncausal_optimum(model, omega, amplitude, PERIOD, force_limit=limit)
+    free = noncausal_optimum(model, omega, amplitude, PERIOD)
+    assert -both.primal == pytest.approx(alone.value + free.value, rel=1e-9)
+    assert np.max(np.abs(both.values[0][:, 0])) <= limit * (1 + 1e-9)
+    from wecss.control.design._optimum import _electrical
+
+    electrical, value, _, _ = _electrical(two, hermitian, -0.5 * two.free_rate, _signals(two, limits), both, 0.7)
+    assert np.isfinite(value) and value > 0 and np.all(np.isfinite(electrical.force))

@@ -61,6 +61,24 @@ def test_one_axis_is_a_line_and_more_axes_need_a_selection(tmp_path):  # type: i
         plot_sweep(ds, select={"seed": 1})
 
 
+def test_a_selected_value_is_found_within_rounding_and_a_missing_one_lists_the_axis():
+    """An axis made by linspace holds 0.1 + 0.2 where the user types 0.3: it is found; a value the axis does not
+    hold is refused with the axis's values (xarray's KeyError before)."""
+    import matplotlib.pyplot as plt
+
+    ds = _combined()
+    ds = ds.assign_coords({"sea.height": ds["sea.height"].values + np.array([0.1 + 0.2 - 0.3, 0.0])})
+    typed = float(np.round(ds["sea.height"].values[0], 12))
+    assert typed not in ds["sea.height"].values.tolist()
+    fig = plot_sweep(ds, "mean_pto_power", select={"pto": "pto_2", "sea.height": typed})
+    np.testing.assert_array_equal(
+        fig.axes[0].get_lines()[0].get_ydata(), ds["mean_pto_power"].isel({"sea.height": 0}).sel(pto="pto_2").values
+    )
+    plt.close(fig)
+    with pytest.raises(ValueError, match=r"select sea.height=7.0: not a value of that axis; accepted: \["):
+        plot_sweep(ds, "mean_pto_power", select={"pto": "pto_2", "sea.height": 7.0})
+
+
 def test_a_list_sweep_is_a_line_over_its_cases():
     import matplotlib.pyplot as plt
 

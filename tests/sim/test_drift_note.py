@@ -203,3 +203,25 @@ def test_a_run_with_probes_has_its_drift_split_too():
     total, numerical, physical = _split(str(ds.attrs["notes"]), "float_1")
     assert physical == pytest.approx(RK4_DRIFT_30S, abs=0.003)
     assert numerical == pytest.approx(total - RK4_DRIFT_30S, abs=0.003)
+
+
+def test_a_re_run_that_fails_keeps_the_run_and_says_why(monkeypatch):
+    """The run is done when its drift is checked: an error in the re-run at dt/2 (here its compile refuses) becomes
+    the note's reason, not the run's failure."""
+    from wecss.control import compile_scene
+    from wecss.sim import _drift_check
+
+    sea = {"kind": "regular", "height": 0.02, "period": 1.2, "duration": 6.0, "ramp": 1.2}
+    compiled = compile_scene(
+        Scene.from_dict({"device": {"name": "m4-111"}, "sea": sea, "radiation": {"method": "none"}})
+    )
+    drift = np.zeros((len(compiled.device.model.body_names), 2))
+    drift[0, 0] = 1.0
+
+    def refuse(*args: Any, **kwargs: Any) -> Any:
+        raise ValueError("a controller that refuses dt/2")
+
+    monkeypatch.setattr(_drift_check, "compile_scene", refuse)
+    check = _drift_check.drift_check(compiled, drift)
+    assert check is not None and check.half is None
+    assert check.reason == "the re-run at dt/2 failed (ValueError: a controller that refuses dt/2)"

@@ -89,14 +89,22 @@ _NUMERIC_KEYS = {
 
 
 def _check_numbers(where: str, entry: Mapping[str, Any]) -> None:
-    """Refuse a numeric field (:data:`_NUMERIC_KEYS`) of ``entry`` that is not a finite number or a list of finite
-    numbers; the message names the field and the value (the bodies, joints and PTOs check the ranges)."""
+    """Refuse a numeric field (:data:`_NUMERIC_KEYS`) of ``entry`` that is not a finite number or a (nested) list of
+    finite numbers (an inertia may be 3 x 3); the message names the field and the value (the bodies, joints and PTOs
+    check the ranges and shapes)."""
     for key in sorted(_NUMERIC_KEYS & set(entry)):
         value = entry[key]
-        items = value if isinstance(value, list) else [value]
-        numbers = all(isinstance(x, int | float) and not isinstance(x, bool) for x in items)
+        items = _flattened(value)
+        numbers = bool(items) and all(isinstance(x, int | float) and not isinstance(x, bool) for x in items)
         if not (numbers and all(math.isfinite(x) for x in items)):
             raise DeviceSpecError(f"{where}: {key} = {value!r}: expected a finite number or a list of finite numbers")
+
+
+def _flattened(value: Any) -> list[Any]:
+    """The leaves of nested lists (a value that is not a list: itself)."""
+    if not isinstance(value, list):
+        return [value]
+    return [leaf for item in value for leaf in _flattened(item)]
 
 
 def _check_keys(where: str, entry: Mapping[str, Any], allowed: set[str], required: set[str]) -> None:

@@ -23,6 +23,21 @@ def _label(da: xr.DataArray, name: str) -> str:
     return f"{name} [{units}]" if units else name
 
 
+def _axis_value(da: xr.DataArray, name: str, value: Any) -> Any:
+    """The value of axis ``name`` that ``value`` names: itself, or for a number the axis's value within 1e-9 of it
+    relative (an axis made by linspace holds 0.30000000000000004 where the user types 0.3)."""
+    if name not in da.coords:
+        return value
+    values = da[name].values
+    if value in values.tolist():
+        return value
+    if np.issubdtype(values.dtype, np.number) and isinstance(value, int | float):
+        close = np.isclose(values, value, rtol=1e-9, atol=0.0)
+        if np.count_nonzero(close) == 1:
+            return values[close][0]
+    raise ValueError(f"select {name}={value!r}: not a value of that axis; accepted: {values.tolist()}")
+
+
 def _select(ds: xr.Dataset, variable: str, select: dict[str, Any] | None) -> tuple[xr.DataArray, xr.DataArray]:
     if variable not in ds:
         numeric = [str(n) for n in ds.data_vars if np.issubdtype(ds[n].dtype, np.number)]
@@ -32,6 +47,7 @@ def _select(ds: xr.Dataset, variable: str, select: dict[str, Any] | None) -> tup
     for name, value in (select or {}).items():
         if name not in da.dims:
             raise ValueError(f"select names {name!r}, not a dimension of {variable} {da.dims}")
+        value = _axis_value(da, name, value)
         da, status = da.sel({name: value}), status.sel({name: value}) if name in status.dims else status
     single = [d for d in da.dims if da.sizes[d] == 1]  # an axis of one value needs no choice
     da = da.squeeze(single)

@@ -74,4 +74,6 @@ def drift_check(controlled: ControlledScene, drift: np.ndarray) -> DriftCheck | 
         record = rerun.scene.runner.run(rerun)
     except SimulationDiverged as err:
         return DriftCheck(dt, order, None, f"the re-run at dt/2 diverged: {str(err).split(';')[0]}")
+    except Exception as err:  # the run itself is done: a failed check must not lose it
+        return DriftCheck(dt, order, None, f"the re-run at dt/2 failed ({type(err).__name__}: {err})")
     return DriftCheck(dt, order, record_drift(rerun, record["q"]))

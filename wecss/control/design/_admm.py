@@ -45,11 +45,14 @@ class PenaltiesNotSeparable(ValueError):
 @dataclass
 class AdmmState:
     """Where an ADMM run ended, to start a similar programme from: the penalty parameter, the split variables and
-    the scaled multipliers (used signals x N x n_pto)."""
+    the scaled multipliers (used signals x N x n_pto), and the split signals and their scales (a start is used only
+    for a programme with the same)."""
 
     rho: float
     z: np.ndarray
     w: np.ndarray
+    used: tuple[int, ...] = ()
+    scale: np.ndarray | None = None
 
 
 @dataclass
@@ -89,15 +92,15 @@ class Splitting:
         lower = np.full((len(used), n_pto), -np.inf)
         upper = np.full((len(used), n_pto), np.inf)
         scale = np.ones((len(used), n_pto))
-        for c, k in enumerate(programme.constrained):
+        for i in range(len(used)):  # by default its RMS at the unconstrained optimum
+            rms = np.sqrt(np.mean(start[i] ** 2, axis=0))
+            scale[i] = np.where(rms > 0, rms, 1.0)
+        for c, k in enumerate(programme.constrained):  # a limited signal: its bound's size, where it has a bound
             i = position[k]
             lower[i] = -programme._bound[c, :, 0]
             upper[i] = programme._bound[c, :, 1]
-            scale[i] = programme._size[c, :, 0]
-        for i, k in enumerate(used):
-            if k not in programme.constrained:  # a penalised or extra signal: its RMS at the unconstrained optimum
-                rms = np.sqrt(np.mean(start[i] ** 2, axis=0))
-                scale[i] = np.where(rms > 0, rms, 1.0)
+            bounded = np.any(np.isfinite(programme._bound[c]), axis=-1)
+            scale[i] = np.where(bounded, programme._size[c, :, 0], scale[i])
         self.scale, self.lower, self.upper = scale, lower / scale, upper / scale
         self.operators = [programme.signals[k].operator / scale[i][None, :, None] for i, k in enumerate(used)]
         self.free = np.stack([programme.signals[k].free / scale[i][None] for i, k in enumerate(used)])
@@ -211,7 +214,13 @@ def admm(
     split = Splitting(programme, with_penalties)
     n = programme.periodic.points
     hessian, linear = programme.hessian, programme.linear
-    if state is not None and state.z.shape == split.start.shape:
+    if (
+        state is not None
+        and state.used == tuple(split.used)
+        and state.scale is not None
+        and state.scale.shape == split.scale.shape
+        and np.allclose(state.scale, split.scale, rtol=1e-12, atol=0.0)
+    ):
         rho, z, w = state.rho, state.z.copy(), state.w.copy()
     else:
         rho = _initial_rho(hessian, split.gram, n)
@@ -246,8 +255,9 @@ def admm(
     at_lower = (z <= split.lower[:, None, :] + 1e-9) & (y < 0)
     index = [split.used.index(k) for k in programme.constrained]
     active = np.stack([at_lower[index], at_upper[index]], axis=-1)  # (n_c, N, n_pto, 2)
+    state_end = AdmmState(rho, z, w, tuple(split.used), split.scale)
     return AdmmResult(
-        force=force, dual=split.dual_bound(y), iterations=iteration, state=AdmmState(rho, z, w),
+        force=force, dual=split.dual_bound(y), iterations=iteration, state=state_end,
         active=np.ascontiguousarray(np.swapaxes(active, 1, 2)),
     )  # fmt: skip
 

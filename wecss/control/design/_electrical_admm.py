@@ -41,7 +41,7 @@ def electrical_admm(
     programme : SpectralProgramme
         The mechanical programme with its Hessian and linear term times eta, without penalties.
     supply : float
-        k = (1 / eta - eta) / N [the objective's units per W].
+        k = (1 / eta - eta) / N [-] (the objective, in W, gains k max(f v, 0) per sample).
     tolerance : float
         Stop when the primal and dual residuals are below this share of their scales [-].
     max_iterations : int

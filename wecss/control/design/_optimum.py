@@ -104,7 +104,7 @@ class NonCausalOptimum:
     periodic : PeriodicResponse
     settings : dict
         The limits, efficiency, copper loss and basis it was made with, and how many harmonics' admittance had an
-        eigenvalue raised to the passivity floor (``floored_harmonics``; see ``PASSIVITY_FLOOR``).
+        eigenvalue raised to the passivity floor (``floored_harmonics``, a count; see ``PASSIVITY_FLOOR``).
     """
 
     objective: str
@@ -478,14 +478,14 @@ def _electrical(
             rows |= new  # add the majorant there and solve again: then the procedure cannot lose
 
         improved = trial_value - value
-        if improved <= 0:  # lost (the programme solved too loosely) or stationary: tighter, or done
+        if not improved > 0:  # lost (the programme solved too loosely), stationary or NaN: tighter, or done
             if tolerance <= ADMM_TIGHT:
                 break
             tolerance = max(0.01 * tolerance, ADMM_TIGHT)
             continue
         solution, value = trial, trial_value
         point = trial
-        if improved <= CCP_TOLERANCE * max(abs(value), 1e-300) and tolerance <= ADMM_TIGHT:
+        if improved <= CCP_TOLERANCE * max(abs(value), 1e-300) and tolerance <= 0.1 * CCP_TOLERANCE:
             break
         tolerance = float(np.clip(0.1 * improved / max(abs(value), 1e-300), ADMM_TIGHT, ADMM_LOOSE))
     if solution.violation > FEASIBILITY:  # an ADMM solution a little past a limit (its tolerance): the nearest within
