@@ -27,6 +27,7 @@ F is feasible; the solution reports both, their gap and F's largest violation.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -213,7 +214,7 @@ def admm(
         raise ValueError("certify_every needs the programme's penalties (with_penalties=True)")
     split = Splitting(programme, with_penalties)
     n = programme.periodic.points
-    hessian, linear = programme.hessian, programme.linear
+    hessian = programme.hessian
     if (
         state is not None
         and state.used == tuple(split.used)
@@ -225,31 +226,14 @@ def admm(
     else:
         rho = _initial_rho(hessian, split.gram, n)
         z, w = split.project(split.start, rho), np.zeros_like(split.start)
-    factor = np.linalg.inv(hessian + rho * 0.5 * n * split.gram)
-    iteration, force = 0, programme.unconstrained
-    for iteration in range(1, max_iterations + 1):
-        force = np.einsum("mpq,mq->mp", factor, linear - rho * split.adjoint(split.free - z + w))
-        u = split.values(force)
-        relaxed = RELAXATION * u + (1.0 - RELAXATION) * z
-        z_old = z
-        z = split.project(relaxed + w, rho)
-        w = w + relaxed - z
-        primal = float(np.max(np.abs(u - z)))
-        dual = rho * float(np.max(np.abs(z - z_old)))
-        scale_primal = max(float(np.max(np.abs(u))), float(np.max(np.abs(z))), 1e-300)
-        scale_dual = max(rho * float(np.max(np.abs(w))), 1e-300)
-        if primal <= tolerance * scale_primal and dual <= tolerance * scale_dual:
-            if not certify_every:
-                break
-            if iteration % certify_every == 0 and _gap_small(programme, split, force, rho * w, tolerance):
-                break
-        if iteration % 25 == 0:  # keep the residuals balanced: rescale rho and the scaled multipliers with it
-            ratio = (primal / scale_primal) / max(dual / scale_dual, 1e-300)
-            if ratio > 10.0 or ratio < 0.1:
-                new = rho * float(np.clip(np.sqrt(ratio), 0.1, 10.0))
-                w *= rho / new
-                rho = new
-                factor = np.linalg.inv(hessian + rho * 0.5 * n * split.gram)
+
+    def certified(force: np.ndarray, y: np.ndarray) -> bool:
+        return _gap_small(programme, split, force, y, tolerance)
+
+    force, z, w, rho, iteration = iterate(
+        split, split.project, rho, z, w, tolerance, max_iterations, RELAXATION,
+        certify=certified if certify_every else None, certify_every=max(certify_every, 1),
+    )  # fmt: skip
     y = rho * w
     at_upper = (z >= split.upper[:, None, :] - 1e-9) & (y > 0)
     at_lower = (z <= split.lower[:, None, :] + 1e-9) & (y < 0)
@@ -260,6 +244,59 @@ def admm(
         force=force, dual=split.dual_bound(y), iterations=iteration, state=state_end,
         active=np.ascontiguousarray(np.swapaxes(active, 1, 2)),
     )  # fmt: skip
+
+
+def iterate(
+    split: Splitting,
+    project: Callable[[np.ndarray, float], np.ndarray],
+    rho: float,
+    z: np.ndarray,
+    w: np.ndarray,
+    tolerance: float,
+    max_iterations: int,
+    relaxation: float,
+    floor: float = 0.0,
+    certify: Callable[[np.ndarray, np.ndarray], bool] | None = None,
+    certify_every: int = 1,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+    """The scaled ADMM iteration of the module docstring from (rho, z, w): the force's step, the z step
+    ``project(target, rho)``, the multipliers' step, over-relaxed by ``relaxation``; rho rebalanced every 25
+    iterations (never below ``floor``). It stops when the primal and dual residuals are below ``tolerance`` of their
+    scales and, with ``certify``, when ``certify(force, rho w)`` says so (asked every ``certify_every`` iterations).
+
+    Returns
+    -------
+    force, z, w, rho, iterations
+    """
+    programme = split.programme
+    n = programme.periodic.points
+    hessian, linear = programme.hessian, programme.linear
+    factor = np.linalg.inv(hessian + rho * 0.5 * n * split.gram)
+    iteration, force = 0, programme.unconstrained
+    for iteration in range(1, max_iterations + 1):
+        force = np.einsum("mpq,mq->mp", factor, linear - rho * split.adjoint(split.free - z + w))
+        u = split.values(force)
+        relaxed = relaxation * u + (1.0 - relaxation) * z
+        z_old = z
+        z = project(relaxed + w, rho)
+        w = w + relaxed - z
+        primal = float(np.max(np.abs(u - z)))
+        dual = rho * float(np.max(np.abs(z - z_old)))
+        scale_primal = max(float(np.max(np.abs(u))), float(np.max(np.abs(z))), 1e-300)
+        scale_dual = max(rho * float(np.max(np.abs(w))), 1e-300)
+        if primal <= tolerance * scale_primal and dual <= tolerance * scale_dual:
+            if certify is None:
+                break
+            if iteration % certify_every == 0 and certify(force, rho * w):
+                break
+        if iteration % 25 == 0:  # keep the residuals balanced: rescale rho and the scaled multipliers with it
+            ratio = (primal / scale_primal) / max(dual / scale_dual, 1e-300)
+            if ratio > 10.0 or ratio < 0.1:
+                new = max(rho * float(np.clip(np.sqrt(ratio), 0.1, 10.0)), floor)
+                w *= rho / new
+                rho = new
+                factor = np.linalg.inv(hessian + rho * 0.5 * n * split.gram)
+    return force, z, w, rho, iteration
 
 
 def admm_active_set(

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._admm import Splitting, _initial_rho
+from ._admm import Splitting, _initial_rho, iterate
 from ._spectral_qp import SpectralProgramme
 
 RELAXATION: float = 1.0
@@ -56,7 +56,7 @@ def electrical_admm(
     n = programme.periodic.points
     k = supply * split.scale[f_at] * split.scale[v_at]  # k' per PTO
     lo, hi = split.lower[f_at][None, :], split.upper[f_at][None, :]
-    hessian, linear = programme.hessian, programme.linear
+    hessian = programme.hessian
     floor = 2.0 * float(np.max(k))
     rho = max(_initial_rho(hessian, split.gram, n), floor)
 
@@ -65,30 +65,8 @@ def electrical_admm(
         z[f_at], z[v_at] = _prox(target[f_at], target[v_at], k[None, :], rho, lo, hi)
         return z
 
-    factor = np.linalg.inv(hessian + rho * 0.5 * n * split.gram)
     z, w = project(split.start, rho), np.zeros_like(split.start)
-    force = programme.unconstrained
-    iteration = 0
-    for iteration in range(1, max_iterations + 1):
-        force = np.einsum("mpq,mq->mp", factor, linear - rho * split.adjoint(split.free - z + w))
-        u = split.values(force)
-        relaxed = RELAXATION * u + (1.0 - RELAXATION) * z
-        z_old = z
-        z = project(relaxed + w, rho)
-        w = w + relaxed - z
-        primal = float(np.max(np.abs(u - z)))
-        dual = rho * float(np.max(np.abs(z - z_old)))
-        scale_primal = max(float(np.max(np.abs(u))), float(np.max(np.abs(z))), 1e-300)
-        scale_dual = max(rho * float(np.max(np.abs(w))), 1e-300)
-        if primal <= tolerance * scale_primal and dual <= tolerance * scale_dual:
-            break
-        if iteration % 25 == 0:
-            ratio = (primal / scale_primal) / max(dual / scale_dual, 1e-300)
-            if ratio > 10.0 or ratio < 0.1:
-                new = max(rho * float(np.clip(np.sqrt(ratio), 0.1, 10.0)), floor)
-                w *= rho / new
-                rho = new
-                factor = np.linalg.inv(hessian + rho * 0.5 * n * split.gram)
+    force, _, _, _, iteration = iterate(split, project, rho, z, w, tolerance, max_iterations, RELAXATION, floor)
     return force, iteration
 
 
