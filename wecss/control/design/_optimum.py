@@ -74,7 +74,7 @@ class NonCausalOptimum:
         "mechanical", "copper" or "electrical".
     value : float
         The optimum of the objective's mean power [W]: absorbed power, absorbed power less copper loss, or
-        electrical power (at the samples).
+        electrical power (of the trajectory, evaluated between the samples too: ``ELECTRICAL_OVERSAMPLING``).
     upper_bound : float
         A certified upper bound on the programme's optimum [W] (the dual value; for "electrical", efficiency times
         the mechanical optimum's bound).
@@ -83,7 +83,11 @@ class NonCausalOptimum:
     absorbed : ndarray (n_pto,)
         Mean absorbed mechanical power per PTO [W].
     electrical : ndarray (n_pto,) or None
-        Mean electrical power per PTO at the samples [W] (with an efficiency).
+        Mean electrical power per PTO [W] (with an efficiency), on a grid ``ELECTRICAL_OVERSAMPLING`` times finer
+        than the samples: the procedure maximises it at the samples, where the force can keep the power from
+        being negative while it is negative between them, so the samples alone overstate it (the Wavestar's SS2
+        on a 60 s record: 0.2766 W at the samples, 0.2587 W in a run that plays the trajectory, 0.2588 W on the
+        finer grid). ``settings["electrical_at_samples"]`` keeps the samples' value.
     force : complex ndarray (M, n_pto)
         The force's Fourier amplitudes [N or N m].
     time : ndarray (N,)
@@ -344,9 +348,10 @@ def noncausal_optimum(
             bound = float(efficiency) * bound
     force_samples, stroke, rate = solution.values[0], solution.values[1], solution.values[2]
     absorbed = _absorbed(periodic, solution.force)
-    electrical = None
+    electrical, at_samples = None, None
     if efficiency is not None:
-        electrical = np.mean(_electrical_power(-force_samples * rate, float(efficiency)), axis=0)
+        at_samples = float(np.sum(np.mean(_electrical_power(-force_samples * rate, float(efficiency)), axis=0)))
+        electrical = _electrical_between_samples(periodic, solution.force, float(efficiency))
     if objective == "electrical" and electrical is not None:
         value = float(np.sum(electrical))
     return NonCausalOptimum(
@@ -357,7 +362,7 @@ def noncausal_optimum(
         settings={
             **{k: v.tolist() for k, v in limits.items()}, "efficiency": efficiency, "copper_loss": loss.tolist(),
             "basis": float(periodic.harmonic[-1] / periodic.wave_harmonics.max()),
-            "floored_harmonics": floored,
+            "floored_harmonics": floored, "electrical_at_samples": at_samples,
         },
     )  # fmt: skip
 
@@ -411,6 +416,24 @@ def _absorbed(periodic: PeriodicResponse, force: np.ndarray) -> np.ndarray:
 def _electrical_power(power: np.ndarray, efficiency: float) -> np.ndarray:
     """eta P absorbing, P / eta supplying."""
     return np.where(power >= 0, efficiency * power, power / efficiency)
+
+
+ELECTRICAL_OVERSAMPLING: int = 16
+"""How much finer than the programme's samples the reported electrical power is evaluated (``NonCausalOptimum``)."""
+
+
+def _electrical_between_samples(periodic: PeriodicResponse, force: np.ndarray, efficiency: float) -> np.ndarray:
+    """Mean electrical power per PTO [W] of force amplitudes (M, n_pto), the force and the stroke rate synthesised
+    on ``ELECTRICAL_OVERSAMPLING`` times the programme's samples."""
+    n = ELECTRICAL_OVERSAMPLING * periodic.points
+    rate = periodic.free_rate + np.einsum("mpq,mq->mp", periodic.admittance, force)
+
+    def fine(amplitudes: np.ndarray) -> np.ndarray:
+        spectrum = np.zeros((n // 2 + 1, amplitudes.shape[1]), dtype=complex)
+        spectrum[periodic.harmonic] = 0.5 * n * amplitudes
+        return np.fft.irfft(spectrum, n=n, axis=0)
+
+    return np.mean(_electrical_power(-fine(force) * fine(rate), efficiency), axis=0)
 
 
 def _mean_electrical(values: list[np.ndarray], efficiency: float) -> float:

@@ -9,6 +9,7 @@ from ._horizon import HorizonModel as HorizonModel
 from ._observer import StateObserver as StateObserver
 from ._power_qp import PowerQP as PowerQP
 from ._prediction import ARPredictor as ARPredictor
+from ._qp_solvers import ClarabelPath as ClarabelPath
 from ._qp_solvers import CvxpyPath as CvxpyPath
 from ._qp_solvers import OsqpPath as OsqpPath
 from ._qp_solvers import Solution as Solution
