@@ -76,8 +76,9 @@ def simulate_linear(
     Raises
     ------
     ValueError
-        For a device with a free base (its coordinates are not linear), an unknown ``hold``, or a scene whose
-        radiation memory is not a state-space model (``wecss.linear.NoStateSpace``).
+        For a device with a free base (its coordinates are not linear), an unknown ``hold``, a scene whose
+        radiation memory is not a state-space model (``wecss.linear.NoStateSpace``), or a device with modal
+        coordinates held quasi-static (``LinearModel.refuse_held``).
     """
     if isinstance(compiled, str | Path):
         compiled = Scene.from_toml(compiled)
@@ -94,6 +95,7 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     if hold not in LINEAR_HOLDS:
         raise ValueError(f"hold must be one of {', '.join(LINEAR_HOLDS)}; got {hold!r}")
     model = model or linearize(compiled)
+    model.refuse_held("the linear simulation")
     model.modal_steps(compiled.dt, hold)  # the modal form and step are made (and cached) before the clock starts
     if not (compiled.linear_controller or model.pto_jacobian.shape[0] == 0):
         model.modal_steps(compiled.dt, "zoh")

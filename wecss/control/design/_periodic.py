@@ -199,6 +199,13 @@ def _dynamic_stiffness(model: LinearModel, omega: np.ndarray, response: str) -> 
         raise ValueError('response "fit" needs a model with a state-space radiation fit')
     bw = model.hydro_jacobian
     memory = model.radiation.frequency_response(omega)  # (n_w, n_h, n_h)
+    if model.held is not None:  # held coordinates: no rate, no acceleration (their columns of M and C out)
+        kept = (~model.held).astype(float)
+        return (
+            -(omega**2)[:, None, None] * (model.mass * kept)[None]
+            + 1j * omega[:, None, None] * ((model.damping * kept)[None] + bw.T @ memory @ (bw * kept))
+            + model.stiffness[None]
+        )
     return (
         -(omega**2)[:, None, None] * model.mass[None]
         + 1j * omega[:, None, None] * (model.damping[None] + bw.T @ memory @ bw)
