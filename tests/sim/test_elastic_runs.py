@@ -15,6 +15,7 @@ from scipy.linalg import eigh
 
 import wecss.hydro
 from tests.linear.state_equations import central_jacobian, held_state_derivative, state_derivative
+from wecss.control import ControlContext, Controller, Measurement, pto_control_force
 from wecss.multibody import Dynamics
 from wecss.scene import SceneError
 from wecss.sim import compile_scene, linearize
@@ -163,6 +164,84 @@ def test_the_linear_model_s_state_matrix_is_the_jacobian_of_the_elastic_equation
     assert error <= 1e-8
 
 
+class _HeldSpringDamper(Controller):
+    """f = -c x_dot - k x from the measured stroke and rate, held over each step (no ``linear_gains``); it keeps
+    the strokes it measured (``seen``: time, stroke)."""
+
+    needs_state = False
+
+    def __init__(self, damping: float, stiffness: float) -> None:
+        self.c, self.k = np.array([damping]), np.array([stiffness])
+        self.seen: list[tuple[float, float]] = []
+
+    def setup(self, context: ControlContext) -> None:
+        assert context.n_pto == 1
+
+    def compute(self, t: float, measurement: Measurement) -> np.ndarray:
+        self.seen.append((t, float(measurement.displacement[0])))
+        return pto_control_force(0.0, self.c, self.k, measurement.displacement, measurement.velocity)
+
+
+def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(elastic_spec, tmp_path):
+    """The arm above 30 Hz held quasi-static, the small regular wave (H 0.02 m, 12 periods): the linear runner
+    (``solver.method = "linear"``, the condensed model stepped exactly) against generalised-alpha, the same scene.
+    Open loop (the cylinder's damping folded into the model), at dt 0.05 s: over the last two periods the pivot
+    angle, the cylinder's stroke, a kept and a held modal coordinate agree to 2e-3 of their amplitudes (the
+    scheme's error at that step and the wave's nonlinearity). Closed loop (a spring-damper controller without
+    linear gains, a tenth of the cylinder's damping and 20 kN/m, its force held over each step): the stroke the
+    controller measured at each step is the one the run records there (the held coordinates' values fed through
+    by the force of the step before), to 1e-12 of the stroke's range, in both runs; at dt 0.025 s the two runs
+    agree to 5e-3 of the amplitudes (measured 4.1e-3, 2.4e-3, 1.8e-3 for the pivot at 0.05, 0.025, 0.0125 s:
+    generalised-alpha's error on the held force's jumps, and the nonlinearity). The held coordinates' rates and
+    accelerations are zero in every run."""
+    import dataclasses
+
+    from wecss.sim import simulate
+
+    spec = _held_spec(elastic_spec, tmp_path, 30.0)
+    sea = {"kind": "regular", "height": 0.02, "period": T, "duration": 12 * T, "ramp": 2 * T}
+    kwargs = {"sea": sea, "controller": {"name": "damping", "parameters": {}}, "radiation": {"method": "state_space"},
+              "outputs": {"variables": ["motion", "pto"]}}  # fmt: skip
+    runs = {}
+    for method in ("linear", "generalized-alpha"):
+        compiled = compile_scene(scene(spec, solver={"method": method, "dt": 0.05}, **kwargs))
+        runs[method, "open"] = simulate(compiled)
+        compiled = compile_scene(scene(spec, solver={"method": method, "dt": 0.025}, **kwargs))
+        (damping,) = compiled.plant.pto_damping
+        plant = compiled.plant._replace(pto_damping=np.zeros_like(compiled.plant.pto_damping))
+        controller = _HeldSpringDamper(0.1 * float(damping), 2e4)  # 320 kN s/m held over a step is unstable
+        closed = dataclasses.replace(compiled, plant=plant, controller=controller, linear_controller=False)
+        runs[method, "closed"] = ds = simulate(closed)
+        seen = np.array(controller.seen)
+        recorded = ds.pto_displacement.isel(pto=0).values
+        steps = np.rint(seen[:, 0] / 0.025).astype(int)
+        assert steps.size == recorded.size - 1 and np.array_equal(steps, np.arange(steps.size))
+        span = recorded.max() - recorded.min()
+        assert np.abs(seen[:, 1] - recorded[:-1]).max() <= 1e-12 * span
+    held = compiled.device.model.quasi_static_velocities
+    names = list(compiled.device.model.velocity_names)
+    held_names = [n for n, h in zip(names, held, strict=True) if h]
+    for loop, tolerance in (("open", 2e-3), ("closed", 5e-3)):
+        linear, alpha = runs["linear", loop], runs["generalized-alpha", loop]
+        assert linear.attrs["solver"].startswith("linear")
+        late = linear.time.values >= 10 * T
+        pairs = {
+            "pivot__pitch": (linear.angle.sel(dof_angular="pivot__pitch"), alpha.angle.sel(dof_angular="pivot__pitch")),
+            "stroke": (linear.pto_displacement.isel(pto=0), alpha.pto_displacement.isel(pto=0)),
+        }
+        for name in ("arm__flex1", "arm__flex3"):
+            pairs[name] = tuple(r.generalised_coordinate.sel(dof_generalised=name) for r in (linear, alpha))
+        for name, (got, want) in pairs.items():
+            got, want = got.values[late], want.values[late]
+            span = 0.5 * (want.max() - want.min())
+            error = np.abs(got - want).max() / span
+            print(f"{loop} loop, {name}: linear against generalised-alpha {error:.2e} of the amplitude {span:.3g}")
+            assert error < tolerance
+        for run in (linear, alpha):
+            for variable in ("generalised_velocity", "generalised_acceleration"):
+                assert not np.any(run[variable].sel(dof_generalised=held_names).values)
+
+
 def test_the_condensed_state_matrix_is_the_jacobian_of_the_held_equations(elastic_spec, tmp_path):
     """The arm's coordinates above 30 Hz held quasi-static (the two lowest kept): the linear model's states are the
     kept coordinates, their rates and the radiation states, and its state matrix is the Jacobian of the nonlinear
@@ -210,7 +289,10 @@ def test_the_condensed_model_is_the_full_equations_with_the_held_columns_out(ela
     fit's K_r(w) = C_r (i w - A_r)^-1 B_r (the held columns of inertia and damping out), for the coordinates, and
     i w times the kept ones' for their rates, zero for the held ones' (to 1e-9). ``coordinate_maps`` gives the same
     held values from a state and a force; the model made again with its own radiation states or PTO gains is the
-    same, and written for netCDF and read back keeps its mask."""
+    same, and written for netCDF and read back keeps its mask. Control design's PTO admittance
+    (``wecss.control.design.pto_response``) is the stroke rate of the kept coordinates of the same equations, from
+    the database's A(omega) and B(omega) (to 1e-12)."""
+    from wecss.control.design import pto_response
     from wecss.linear import LinearModel
 
     spec = _held_spec(elastic_spec, tmp_path, 30.0)
@@ -234,6 +316,18 @@ def test_the_condensed_model_is_the_full_equations_with_the_held_columns_out(ela
         error = np.abs(response[: 2 * nv] - want).max() / np.abs(want).max()
         print(f"{w} rad/s: {error:.1e}")
         assert error <= 1e-9
+    # the PTO admittance of control design: the stroke rate of the kept coordinates, from the database's Z
+    omega = np.array([0.7, 1.3])
+    _, admittance = pto_response(model, omega, np.ones((bw.shape[0], omega.size)))
+    added, radiation = model.hydro.at(omega)
+    g = model.pto_jacobian
+    for j, w in enumerate(omega):
+        inertia = (model.database_mass + bw.T @ added[j] @ bw) * kept
+        losses = (model.damping + bw.T @ radiation[j] @ bw) * kept
+        xi = np.linalg.solve(-(w**2) * inertia + 1j * w * losses + model.stiffness, g.T)
+        want = 1j * w * (g * kept) @ xi
+        assert np.abs(admittance[j] - want).max() <= 1e-12 * np.abs(want).max()
+        assert np.abs(want - 1j * w * g @ xi).max() > 1e-6 * np.abs(want).max()  # the held part moves the stroke
     rng = np.random.default_rng(5)
     x, f = rng.normal(size=a.shape[0]), rng.normal(size=nv)
     x_map, y_map = model.coordinate_maps()
@@ -366,7 +460,7 @@ def test_a_run_with_the_arm_held_quasi_static_is_the_exact_quasi_static_solution
     sea = {"kind": "regular", "height": 0.02, "period": T, "duration": 12 * T, "ramp": 2 * T}
     kwargs = {"sea": sea, "controller": {"name": "damping", "parameters": {}}, "radiation": {"method": "state_space"}}
     with pytest.raises(
-        SceneError, match=r"'beeman' does not solve .* \(arm__flex\d+, .*these do: frequency, generalized-alpha"
+        SceneError, match=r"'beeman' does not solve .* \(arm__flex\d+, .*these do: frequency, generalized-alpha, linear"
     ):
         compile_scene(scene(spec, solver={"method": "beeman", "dt": 0.05}, **kwargs))
     compiled = compile_scene(scene(spec, solver={"dt": 0.05}, outputs={"variables": ["motion", "pto"]}, **kwargs))

@@ -360,8 +360,28 @@ class LinearModel:
                 f"{caller}: the linear model condenses {int(np.count_nonzero(self.held))} modal coordinates held "
                 f"quasi-static (flexible.quasi_static_above; velocities {np.flatnonzero(self.held).tolist()}) out "
                 "of its states, and this use needs every coordinate among them; leave quasi_static_above out, or "
-                "use the nonlinear simulation (generalised-alpha) or the frequency-domain solution"
+                "run the scene with solver.method 'generalized-alpha', 'linear' or 'frequency'"
             )
+
+    def output_maps(self) -> tuple[np.ndarray, np.ndarray]:
+        """Rows (3 nv, n_states) and feedthrough (3 nv, nv) with [xi; xi_dot; xi_ddot] = rows x + feed f, for the
+        state x and the generalised forces f (``force_input``'s) [SI]: the displacements of :meth:`coordinate_maps`,
+        the rates (a held coordinate's zero) and the accelerations (a held coordinate's zero)."""
+        nv, n = self.mass.shape[0], self.n_states
+        a = np.asarray(self.state_space.A)
+        rows, feed = np.zeros((3 * nv, n)), np.zeros((3 * nv, nv))
+        if self.held is None:
+            rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
+            rows[2 * nv :] = a[nv : 2 * nv]
+            feed[2 * nv :] = self.force_input[nv : 2 * nv]
+            return rows, feed
+        kept = np.flatnonzero(~self.held)
+        n_r = kept.size
+        rows[:nv], feed[:nv] = self.coordinate_maps()
+        rows[nv + kept, n_r : 2 * n_r] = np.eye(n_r)
+        rows[2 * nv + kept] = a[n_r : 2 * n_r]
+        feed[2 * nv + kept] = self.force_input[n_r : 2 * n_r]
+        return rows, feed
 
     def coordinate_maps(self) -> tuple[np.ndarray, np.ndarray]:
         """X (nv, n_states) and Y (nv, nv) with the generalised displacements from the equilibrium xi = X x + Y f,

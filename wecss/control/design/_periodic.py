@@ -182,7 +182,8 @@ def periodic_response(
     forcing[index - low] = (model.hydro_jacobian.T @ coefficients).T
     inputs = np.broadcast_to(g.T.astype(complex), (harmonic.size, *g.T.shape))
     solved = np.linalg.solve(z, np.concatenate([forcing[:, :, None], inputs], axis=2))
-    rate = 1j * w[:, None, None] * (g @ solved)  # (n_m, n_pto, 1 + n_pto)
+    moving = g if model.held is None else g * ~model.held  # a held coordinate has no rate
+    rate = 1j * w[:, None, None] * (moving @ solved)  # (n_m, n_pto, 1 + n_pto)
     return PeriodicResponse(
         period=float(period), harmonic=harmonic, omega=w, free_rate=rate[:, :, 0], admittance=rate[:, :, 1:],
         stroke_at_equilibrium=np.asarray(model.pto_stroke, dtype=float).copy(), points=n,
