@@ -193,7 +193,8 @@ def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(elastic
     by the force of the step before), to 1e-12 of the stroke's range, in both runs; at dt 0.025 s the two runs
     agree to 5e-3 of the amplitudes (measured 4.1e-3, 2.4e-3, 1.8e-3 for the pivot at 0.05, 0.025, 0.0125 s:
     generalised-alpha's error on the held force's jumps, and the nonlinearity). The held coordinates' rates and
-    accelerations are zero in every run."""
+    accelerations are zero in every run; an initial displacement of a held coordinate is refused by the linear
+    runner (its condensed model has no such state)."""
     import dataclasses
 
     from wecss.sim import simulate
@@ -240,6 +241,10 @@ def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(elastic
         for run in (linear, alpha):
             for variable in ("generalised_velocity", "generalised_acceleration"):
                 assert not np.any(run[variable].sel(dof_generalised=held_names).values)
+    given = scene(spec, solver={"method": "linear", "dt": 0.05}, initial={"displacement": {"arm__flex3": 1e-4}},
+                  **kwargs)  # fmt: skip
+    with pytest.raises(SceneError, match=r"initial.displacement or initial.velocity gives \['arm__flex3'\] a value"):
+        simulate(given)  # the condensed model has no such state: refused, not ignored
 
 
 def test_the_condensed_state_matrix_is_the_jacobian_of_the_held_equations(elastic_spec, tmp_path):

@@ -182,13 +182,27 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
 
 def _initial_state(compiled: ControlledScene, model: LinearModel) -> np.ndarray | None:
     """The linear model's initial state for the scene's ``[initial]`` (None: at rest in the equilibrium): the
-    displacement and velocity increments as xi and xi_dot, no radiation memory."""
+    displacement and velocity increments as xi and xi_dot, no radiation memory.
+
+    Raises
+    ------
+    SceneError
+        If it gives a coordinate held quasi-static a displacement or a velocity (the condensed model has neither).
+    """
     if compiled.scene.initial.at_rest:
         return None
     delta, velocity = initial_increments(compiled.scene, compiled.device)
     nv = model.mass.shape[0]
     x0 = np.zeros(model.n_states)
     if model.held is not None:  # the kept coordinates' (the held ones' values follow from their equations)
+        given = model.held & ((delta != 0) | (velocity != 0))
+        if np.any(given):
+            names = [name for name, g in zip(compiled.device.model.velocity_names, given, strict=True) if g]
+            raise SceneError(
+                f"initial.displacement or initial.velocity gives {names} a value, and they are held quasi-static "
+                "(flexible.quasi_static_above): in the linear model their values follow from their equations and "
+                "they have no rate; leave them out"
+            )
         kept = ~model.held
         n_r = int(np.count_nonzero(kept))
         x0[:n_r], x0[n_r : 2 * n_r] = delta[kept], velocity[kept]
