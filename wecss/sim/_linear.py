@@ -77,8 +77,10 @@ def simulate_linear(
     Raises
     ------
     ValueError
-        For a device with a free base (its coordinates are not linear), an unknown ``hold``, a scene whose
+        For a device with a free base (its coordinates are not linear), an unknown ``hold``, or a scene whose
         radiation memory is not a state-space model (``wecss.linear.NoStateSpace``).
+    SceneError
+        If ``initial`` gives a modal coordinate held quasi-static a displacement or a velocity.
 
     Modal coordinates held quasi-static (``flexible.quasi_static_above``) are condensed in the model
     (``wecss.linear.linearize``): its states are the kept coordinates, their values the outputs with the
