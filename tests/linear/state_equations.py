@@ -37,3 +37,44 @@ def central_jacobian(f: Callable[[np.ndarray], np.ndarray], steps: np.ndarray) -
         step[k] = size
         columns.append((f(step) - f(-step)) / (2 * size))
     return np.stack(columns, axis=1)
+
+
+def held_state_derivative(compiled: CompiledScene, model: LinearModel) -> Callable[[np.ndarray], np.ndarray]:
+    """As :func:`state_derivative` for a model whose held coordinates (``model.held``) are condensed out of its
+    states [xi_r, xi_dot_r, r]: at each state the held coordinates' values solve their algebraic equations, the
+    kernels' accelerations of the held coordinates zero with their rates zero (what the generalised-alpha runner
+    solves), by Newton's method with the derivative of those accelerations taken once at the equilibrium by central
+    differences; the kept coordinates' accelerations are then the kernels' at that configuration."""
+    p, rad, held = compiled.plant, model.radiation, model.held
+    assert rad is not None and held is not None
+    kept, out = np.flatnonzero(~held), np.flatnonzero(held)
+    nv, n_r, n_h = held.size, kept.size, p.hydro_index.size
+
+    def accelerations_at(xi: np.ndarray, rate: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        q = integrate_configuration(p, compiled.q0, xi)
+        a, u, *_ = accelerations(p, q, rate, -(rad.C @ r), np.zeros((n_h, n_h)), np.zeros(p.pto_kind.size))
+        return a, u
+
+    at_rest = (np.zeros(nv), np.zeros(nv), np.zeros(rad.n_states))
+    derivative = np.zeros((out.size, out.size))
+    for k, c in enumerate(out):
+        step = np.zeros(nv)
+        step[c] = 1e-7
+        plus = accelerations_at(at_rest[0] + step, *at_rest[1:])[0][out]
+        minus = accelerations_at(at_rest[0] - step, *at_rest[1:])[0][out]
+        derivative[:, k] = (plus - minus) / 2e-7
+
+    def rhs(x: np.ndarray) -> np.ndarray:
+        xi = np.zeros(nv)
+        rate = np.zeros(nv)  # a held coordinate has no rate
+        xi[kept], rate[kept], r = x[:n_r], x[n_r : 2 * n_r], x[2 * n_r :]
+        for _ in range(50):
+            a, u = accelerations_at(xi, rate, r)
+            change = np.linalg.solve(derivative, a[out])
+            xi[out] -= change
+            if np.abs(change).max() <= 1e-17:
+                break
+        a, u = accelerations_at(xi, rate, r)
+        return np.concatenate([x[n_r : 2 * n_r], a[kept], rad.A @ r + rad.B @ u])
+
+    return rhs

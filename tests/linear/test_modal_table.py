@@ -225,3 +225,60 @@ def test_a_node_s_motion_is_the_floating_frame_s_rigid_motion_and_the_structure_
         )
         assert error <= tolerance
         assert np.abs(at[node] - where).max() <= (1e-6 if water else 1e-15)
+
+
+@pytest.mark.parametrize("water", [True, False])
+def test_the_modal_table_with_held_coordinates_is_the_condensed_model_s(tmp_path, water):
+    """The NOTC arm's coordinates above 30 Hz held quasi-static: one mode per kept coordinate (4), each the
+    solution of the full equations with the held columns of mass and damping left out, written here as the
+    descriptor pencil (K, M_m) with M_m = M(omega) less its held columns (no condensation in the oracle): at each
+    mode's own frequency (the fixed point on A(omega) in water; in air no frequency dependence) omega^2 is a finite
+    eigenvalue of that pencil (to 1e-8) and the shape, on every coordinate, its right eigenvector (to 1e-8 of the
+    largest entry); the damping ratio is the first-order one of the damped pencil, psi' C_m phi / (2 omega
+    psi' M_m phi) with its left eigenvector psi (to 1e-8). The held coordinates' shape entries are not zero."""
+    from scipy.linalg import eig
+
+    _needs("notc-10kw")
+    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
+    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
+    path = tmp_path / "notc-held.toml"
+    path.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic", quasi_static_above = 30 }'))
+    compiled = _compiled(str(path), method="generalized-alpha")
+    held = compiled.device.model.quasi_static_velocities
+    table = modal_table(compiled, water=water)
+    assert table.sizes["mode"] == int(np.count_nonzero(~held)) == 4 and table.converged.values.all()
+    assert table.sizes["dof"] == held.size and "node_displacement" in table
+    from wecss.linear import linearize
+
+    lin = linearize(compiled)
+    kept = (~held).astype(float)
+    low, high = float(lin.hydro.omega[0]), float(lin.hydro.omega[-1])
+    for mode in range(table.sizes["mode"]):
+        period = float(table.period[mode])
+        if np.isinf(period):  # in air the device's pivot turns freely (no water, no gravity)
+            assert not water
+            continue
+        omega = 2 * np.pi / period
+        if water:
+            added, radiation = lin.hydro.at(np.array([np.clip(omega, low, high)]))
+            bw = lin.hydro_jacobian
+            mass = lin.database_mass + bw.T @ added[0] @ bw
+            damping = lin.damping + bw.T @ radiation[0] @ bw
+        else:  # in air: the table's own rest and matrices are the oracle's inputs (no frequency dependence)
+            from wecss.linear._modes import _in_air
+
+            matrices = _in_air(compiled)
+            mass, damping = matrices.mass(0.0), matrices.damping(0.0)
+        stiffness = lin.stiffness if water else _in_air(compiled).stiffness
+        values, left, right = eig(stiffness, mass * kept, left=True, right=True)
+        finite = np.isfinite(values) & (np.abs(values) < 1e12)
+        k = int(np.argmin(np.abs(values[finite] - omega**2)))
+        value, psi, phi = values[finite][k], left[:, finite][:, k], right[:, finite][:, k]
+        assert abs(value - omega**2) <= 1e-8 * omega**2
+        phi = np.real(phi / phi[np.argmax(np.abs(phi))])
+        shape = table.shape.values[mode]
+        assert np.abs(shape - phi).max() <= 1e-8
+        assert np.abs(shape[held]).max() > 1e-6
+        zeta = np.real(psi.conj() @ (damping * kept) @ phi) / (2 * omega * np.real(psi.conj() @ (mass * kept) @ phi))
+        assert float(table.damping_ratio[mode]) == pytest.approx(zeta, rel=1e-8)
+    print(format_modal_table(table))

@@ -231,3 +231,76 @@ def test_controller_is_called_at_its_control_rate_in_both_simulators():
         assert "every 4 steps" in run.attrs["notes"]
     with pytest.raises(SceneError, match="whole number of solver steps"):
         dataclasses.replace(sc, controller=dataclasses.replace(sc.controller, dt=0.01))
+
+
+def _two_coordinates(held: np.ndarray | None):
+    """A hand-made linear model of two coordinates (no hydro DOF, no radiation state), M = [[2, 0.3], [0.3, 1]],
+    C = [[0.1, 0.02], [0.02, 0.05]], K = [[5, -2], [-2, 40]], one PTO with transmission G = [1, 0.5] and no gain;
+    ``held`` the coordinates held quasi-static."""
+    from functools import partial
+
+    from wecss.linear import HydroResponse, LinearModel
+    from wecss.linear._model import _Labels, _state_space
+    from wecss.radiation import RadiationStateSpace
+
+    mass = np.array([[2.0, 0.3], [0.3, 1.0]])
+    damping = np.array([[0.1, 0.02], [0.02, 0.05]])
+    stiffness = np.array([[5.0, -2.0], [-2.0, 40.0]])
+    bw, g = np.zeros((0, 2)), np.array([[1.0, 0.5]])
+    rad = RadiationStateSpace(np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)), (), "none")
+    hydro = HydroResponse(np.array([0.0, 10.0]), np.zeros((2, 0, 0)), np.zeros((2, 0, 0)))
+    labels = _Labels(("a", "b"), ("pto",), (), "two")
+    build = partial(_state_space, labels, rad, mass, damping, stiffness, bw, g, held)
+    return LinearModel(
+        mass, damping, stiffness, mass, bw, g, hydro, np.zeros(2), np.zeros(1), np.zeros(1), np.zeros(1), rad, None,
+        build, None, held,
+    )  # fmt: skip
+
+
+def test_a_held_coordinate_is_condensed_as_the_closed_form_says():
+    """Two coordinates, the second held quasi-static (no rate, no acceleration): by hand, its row
+    0.3 a1 + 0.02 v1 - 2 x1 + 40 x2 = f2 gives x2, and the first row becomes (2 + 0.3 * 2/40) a1 + (0.1 + 0.02 *
+    2/40) v1 + (5 - 4/40) x1 = f1 + f2 * 2/40: m = 2.015, c = 0.101, k = 4.9. The condensed state matrix has the
+    eigenvalues of m s^2 + c s + k (natural frequency sqrt(4.9 / 2.015) rad/s undamped); a unit PTO force (generalised
+    force [1, 0.5]) gives, at rest, x2 = (0.5 - 0.3 * 1.025 / 2.015) / 40 through the feedthrough (and the stroke
+    0.5 x2), and statically
+    the full solution K^-1 [1, 0.5] = [41, 4.5] / 196; Z(omega) solves to the same response as the condensed
+    system's transfer function. A PTO stiffness of 3 N/m folded in (with_pto_gains) condenses K + 3 G'G: k = 8 -
+    0.25 / 40.75, m = 2 + 0.15 / 40.75, c = 0.1 + 0.01 / 40.75. The same model with nothing held has 4 states."""
+    model = _two_coordinates(np.array([False, True]))
+    system = model.state_space
+    a, b, c, d = (np.asarray(x) for x in (system.A, system.B, system.C, system.D))
+    assert a.shape == (2, 2) and model.n_kept == 1 and list(system.state_labels) == ["a", "a__rate"]
+    m, cc, k = 2.015, 0.101, 4.9
+    np.testing.assert_allclose(np.sort_complex(np.linalg.eigvals(a)), np.sort_complex(np.roots([m, cc, k])), rtol=1e-14)
+    print(f"condensed natural frequency {np.sqrt(k / m):.6f} rad/s (undamped)")
+    np.testing.assert_allclose(np.abs(np.linalg.eigvals(a)), np.sqrt(k / m), rtol=1e-14)  # |s| = sqrt(k / m)
+    x2 = (0.5 - 0.3 * 1.025 / 2.015) / 40
+    np.testing.assert_allclose(d[:, 0], [0.0, x2, 0.0, 0.0, 0.5 * x2, 0.0], rtol=1e-14, atol=1e-16)
+    static = -c @ np.linalg.solve(a, b) + d  # outputs: a, b, their rates, the stroke and its rate
+    np.testing.assert_allclose(static[:, 0], [41 / 196, 4.5 / 196, 0, 0, (41 + 0.5 * 4.5) / 196, 0], atol=1e-15)
+    w = 0.8
+    transfer = c @ np.linalg.solve(1j * w * np.eye(2) - a, b) + d
+    xi = np.linalg.solve(model.dynamic_stiffness(np.array([w]))[0], model.pto_jacobian.T[:, 0])
+    np.testing.assert_allclose(transfer[:2, 0], xi, rtol=1e-13)
+    np.testing.assert_allclose(transfer[2:4, 0], [1j * w * xi[0], 0.0], rtol=1e-13)  # the held rate is zero
+    # by hand: Z's held column keeps its stiffness only
+    z = np.array([[-(w**2) * 2 + 1j * w * 0.1 + 5, -2], [-(w**2) * 0.3 + 1j * w * 0.02 - 2, 40]])
+    np.testing.assert_allclose(xi, np.linalg.solve(z, [1.0, 0.5]), rtol=1e-14)
+    stiffer = model.with_pto_gains(0.0, 3.0).state_space
+    m2, c2, k2 = 2 + 0.15 / 40.75, 0.1 + 0.01 / 40.75, 8 - 0.25 / 40.75
+    np.testing.assert_allclose(np.sort_complex(np.linalg.eigvals(np.asarray(stiffer.A))),
+                               np.sort_complex(np.roots([m2, c2, k2])), rtol=1e-14)  # fmt: skip
+    assert list(stiffer.output_labels) == list(system.output_labels)
+    assert _two_coordinates(None).state_space.nstates == 4
+
+
+def test_a_model_with_held_coordinates_is_refused_where_its_states_must_be_every_coordinate():
+    """The MPC horizon model and the excitation estimator take the coordinates as the first states: a condensed
+    model is refused by name, not run on the wrong states."""
+    from wecss.control.mpc import HorizonModel
+
+    model = _two_coordinates(np.array([False, True]))
+    with pytest.raises(ValueError, match=r"the MPC horizon model: the linear model condenses 1 modal coordinates "
+                                         r"held quasi-static .*velocities \[1\]"):  # fmt: skip
+        HorizonModel.of(model, 0.1, 3)

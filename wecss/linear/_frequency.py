@@ -59,20 +59,22 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
         kinds of ``Multibody.velocity_kinds``; a kind no coordinate has gives no dimension), ``pto`` (with
         ``pto_kind``) and ``time`` when given. Complex amplitudes, Re[X e^{+i omega t}] about the equilibrium:
         ``displacement_amplitude`` [m], ``angle_amplitude`` [rad] and ``generalised_coordinate_amplitude`` [1] (the
-        bodies' generalised modes) of the generalised coordinates,
+        bodies' generalised modes) of the generalised coordinates (those held quasi-static, ``flexible.
+        quasi_static_above``, condensed: no rate, no acceleration; their rates in the time series zero, as a run
+        records them),
         ``pto_angle_amplitude`` [rad] and ``pto_displacement_amplitude`` [m] of the PTO strokes (NaN for PTOs of
         the other kind, absent for a kind no PTO has), ``excitation_force_amplitude`` [N],
         ``excitation_moment_amplitude`` [N m] and ``excitation_generalised_force_amplitude`` [J] on the hydro DOFs
         (``hydro_dof_linear`` / ``hydro_dof_angular`` / ``hydro_dof_generalised``),
         ``wave_amplitude`` of the undisturbed elevation at the origin [m]; ``mean_pto_power`` [W], the exact mean
-        absorbed power of each PTO's linear damping c, sum over components of c omega^2 |x_hat|^2 / 2.
+        absorbed power of each PTO's linear damping c, sum over components of c omega^2 |x_hat|^2 / 2 (x_hat
+        without the held coordinates' part, which has no rate).
         Attributes ``rho`` and ``g`` of the data.
 
     Raises
     ------
     ValueError
-        In calm water, for a controller without linear gains, for time series of a device with a free base, or
-        for a device with modal coordinates held quasi-static (``flexible.quasi_static_above``).
+        In calm water, for a controller without linear gains, or for time series of a device with a free base.
     TypeError
         If ``compiled`` is not a CompiledScene.
     """
@@ -81,6 +83,7 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     device = compiled.device.model
     amplitudes = response_amplitudes(model, exc.omega, exc.coefficients)  # (nv, n_w)
     stroke = model.pto_jacobian @ amplitudes  # (n_pto, n_w)
+    moving = stroke if model.held is None else model.pto_jacobian @ _moving(model, amplitudes)  # rate / i omega
     velocity_kinds = np.array(device.velocity_kinds)
     names = np.array(device.velocity_names)
     ptos = [p.name for p in compiled.device.ptos]
@@ -107,7 +110,7 @@ def steady_state(compiled: CompiledScene, time: np.ndarray | None = None) -> xr.
     if ptos:
         kinds = ("pto_angle_amplitude", "pto_displacement_amplitude")
         data.update(by_pto_kind(stroke.T, rotary, kinds, ("omega", "pto")))
-        power = 0.5 * model.pto_damping * np.sum((exc.omega * np.abs(stroke)) ** 2, axis=1)
+        power = 0.5 * model.pto_damping * np.sum((exc.omega * np.abs(moving)) ** 2, axis=1)
         data["mean_pto_power"] = (("pto",), power)
         coords["pto"] = ptos
         coords["pto_kind"] = ("pto", ["rotary" if r else "linear" for r in rotary])
@@ -139,23 +142,25 @@ def frequency_domain_waves(compiled: CompiledScene, caller: str) -> ExcitationMo
     TypeError
         If ``compiled`` is not a CompiledScene.
     ValueError
-        In calm water, for a controller without linear gains, or for a device with modal coordinates held
-        quasi-static (the linear model keeps them dynamic).
+        In calm water or for a controller without linear gains.
     """
     if not isinstance(compiled, CompiledScene):
         raise TypeError(f"{caller} takes a CompiledScene (wecss.sim.compile_scene); got {type(compiled).__name__}")
-    model = compiled.device.model
-    if np.any(model.quasi_static_velocities):
-        raise ValueError(
-            f"{caller}: device {compiled.device.name!r} holds modal coordinates quasi-static "
-            "(flexible.quasi_static_above), and the linear model keeps them dynamic; leave quasi_static_above out "
-            "for the frequency-domain solution of the dynamic model"
-        )
     if compiled.excitation is None:
         raise ValueError("calm water: the steady state is the equilibrium")
     if not compiled.linear_controller:
         raise ValueError("the frequency-domain solution needs a controller with linear gains (such as 'damping')")
     return compiled.excitation
+
+
+def _moving(model: LinearModel, amplitudes: np.ndarray) -> np.ndarray:
+    """``amplitudes`` (nv, ...) with a held coordinate's rows zero: the amplitudes whose rates and accelerations the
+    equations see (a coordinate held quasi-static has none)."""
+    if model.held is None:
+        return amplitudes
+    out = amplitudes.copy()
+    out[model.held] = 0.0
+    return out
 
 
 def _wave_amplitudes(compiled: CompiledScene, omega: np.ndarray) -> np.ndarray:
@@ -190,7 +195,7 @@ def _add_time_series(
         raise ValueError("time series of the steady state need joint coordinates (no free base); use the amplitudes")
     omega = compiled.excitation.omega if compiled.excitation is not None else np.zeros(0)
     xi = np.real(evaluate(amplitudes, omega, time)).T  # (n_t, nv)
-    rate = np.real(evaluate(1j * omega * amplitudes, omega, time)).T
+    rate = np.real(evaluate(1j * omega * _moving(model, amplitudes), omega, time)).T
     kinds = np.array(device.velocity_kinds)
     q = compiled.q0[None] + xi
     for mask, (position, velocity), dim in (
@@ -203,7 +208,7 @@ def _add_time_series(
             data[velocity] = (("time", dim), rate[:, mask])
     rotary = np.array([kind == "rotary" for kind in compiled.pto_kinds], dtype=bool)
     stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
-    stroke_rate = rate @ model.pto_jacobian.T
+    stroke_rate = rate @ model.pto_jacobian.T  # a held coordinate's rate is zero
     data.update(by_pto_kind(stroke, rotary, ("pto_angle", "pto_displacement"), ("time", "pto")))
     data.update(by_pto_kind(stroke_rate, rotary, ("pto_angular_velocity", "pto_velocity"), ("time", "pto")))
     coords["time"] = time

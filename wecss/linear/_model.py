@@ -22,6 +22,28 @@ In the frequency domain, with xi = Re[xi_hat e^{i omega t}] and the database's o
 
 M_db = B(q0)' (M + A_inf) B(q0); A(omega) and B(omega) are interpolated linearly between the database's
 frequencies, as the excitation is. This exact solution needs no radiation fit.
+
+Modal coordinates held quasi-static (``flexible.quasi_static_above``; ``Multibody.quasi_static_velocities``) have no
+rate and no acceleration in any equation, as in the generalised-alpha runner, which solves the full equations with
+their rates and accelerations zero. With the kept coordinates r and the held ones h, the equations above become
+
+    M[:, r] xi_ddot_r + C[:, r] xi_dot_r + K xi = f,     f = Bw' (F_exc - C_r r) + G' f_pto,
+
+(the held columns of M and C, and of Bw in the radiation states' drive, act on zero rates and accelerations; the
+kept coordinates' accelerations still load the held rows through M_hr). The held rows are algebraic and give
+
+    xi_h = K_hh^-1 (f_h - M_hr xi_ddot_r - C_hr xi_dot_r - K_hr xi_r),
+
+and the kept rows, with T = K_rh K_hh^-1 and P = [I, -T] (kept columns first), the condensed equations
+
+    P M[:, r] xi_ddot_r + P C[:, r] xi_dot_r + P K[:, r] xi_r = P f
+
+(static condensation, with the inertia of the kept coordinates' motion on the held rows; the condensed mass is not
+symmetric). The state space then has the states [xi_r, xi_dot_r, r]; its outputs keep every coordinate (a held one's
+value from the states and the inputs, through the feedthrough D; its rate zero, as the runner records it). The
+matrices ``mass``, ``damping`` and ``stiffness`` stay those of all the coordinates (the runner's iteration uses them),
+and the exact frequency response solves the full equations with the held columns of the inertia and damping terms
+left out, which is the same condensation.
 """
 
 from __future__ import annotations
@@ -128,6 +150,9 @@ class LinearModel:
         The scene's body drag linearised in its sea state (``hydrodynamics.drag``): its equivalent damping is in
         ``damping``; its forcing by the fluid's velocity, per wave component, is ``drag.forcing`` (the runs add
         it to the excitation's generalised force). None without drag.
+    held : ndarray (nv,) of bool or None
+        Per generalised velocity: a modal coordinate held quasi-static (``Multibody.quasi_static_velocities``),
+        statically condensed out of the state space (module docstring); None when none is held.
     """
 
     mass: np.ndarray
@@ -145,6 +170,7 @@ class LinearModel:
     system: control.StateSpace | None
     build_system: Callable[[], control.StateSpace] | None = field(default=None, repr=False)
     drag: LinearisedDrag | None = None
+    held: np.ndarray | None = None
 
     @property
     def state_space(self) -> control.StateSpace:
@@ -167,10 +193,19 @@ class LinearModel:
     def dynamic_stiffness(self, omega: np.ndarray) -> np.ndarray:
         """Z(omega) (n_omega, nv, nv) with Z xi_hat = generalised force amplitudes: the bracket of the module
         docstring's frequency-domain equation, exact from the database's A(omega) and B(omega), with the folded PTO
-        gains [SI per generalised coordinate]."""
+        gains [SI per generalised coordinate]. A held coordinate's columns keep their stiffness only (no rate, no
+        acceleration: the module docstring's condensation, solved with every coordinate)."""
         omega = np.atleast_1d(np.asarray(omega, dtype=float))
         added, damping = self.hydro.at(omega)
         bw = self.hydro_jacobian
+        if self.held is not None:  # no rate and no acceleration of a held coordinate: its columns of M and C out
+            kept = (~self.held).astype(float)
+            moving = bw * kept
+            return (
+                -(omega**2)[:, None, None] * (self.database_mass[None] * kept + bw.T @ added @ moving)
+                + 1j * omega[:, None, None] * (self.damping[None] * kept + bw.T @ damping @ moving)
+                + self.stiffness[None]
+            )
         return (
             -(omega**2)[:, None, None] * (self.database_mass[None] + bw.T @ added @ bw)
             + 1j * omega[:, None, None] * (self.damping[None] + bw.T @ damping @ bw)
@@ -206,7 +241,18 @@ class LinearModel:
         change_c = g.T @ np.diag(gains[0] - self.pto_damping) @ g
         change_k = g.T @ np.diag(gains[1] - self.pto_stiffness) @ g
         build = None
-        if self.system is not None or self.build_system is not None:
+        if self.held is not None and (self.system is not None or self.build_system is not None):
+            # the condensation depends on the stiffness and damping of every row: the system made again
+            held, rad = self.held, self.radiation
+            damping_, stiffness_ = self.damping + change_c, self.stiffness + change_k
+
+            def build() -> control.StateSpace:
+                base = self.state_space
+                assert rad is not None
+                labels = _Labels.of(base, self.mass.shape[0])
+                return _state_space(labels, rad, self.mass, damping_, stiffness_, self.hydro_jacobian, g, held)
+
+        elif self.system is not None or self.build_system is not None:
 
             def build() -> control.StateSpace:
                 base = self.state_space
@@ -252,6 +298,10 @@ class LinearModel:
             )
         nv, nz = self.mass.shape[0], radiation.n_states
         bw = self.hydro_jacobian
+        if self.held is not None:  # the condensed system made with the other radiation states
+            made = _state_space(_Labels.of(system, nv), radiation, self.mass, self.damping, self.stiffness, bw,
+                                self.pto_jacobian, self.held)  # fmt: skip
+            return replace(self, radiation=radiation, system=made, build_system=None)
         a = np.zeros((2 * nv + nz, 2 * nv + nz))
         a[: 2 * nv, : 2 * nv] = np.asarray(system.A)[: 2 * nv, : 2 * nv]
         a[nv : 2 * nv, 2 * nv :] = -np.linalg.solve(self.mass, bw.T @ radiation.C)
@@ -272,17 +322,81 @@ class LinearModel:
 
     @property
     def n_states(self) -> int:
-        """Number of states (2 nv + radiation states)."""
+        """Number of states (2 nv + radiation states; 2 n_kept + radiation states with held coordinates)."""
         return int(self.state_space.nstates)
+
+    @property
+    def n_kept(self) -> int:
+        """Number of generalised coordinates among the states (nv less the held ones)."""
+        nv = self.mass.shape[0]
+        return nv if self.held is None else int(nv - np.count_nonzero(self.held))
 
     @property
     def force_input(self) -> np.ndarray:
         """Input matrix (n_states, nv) of generalised forces: every input acts through it (the excitation as
-        Bw' F_exc, the PTO forces as G' f_pto)."""
+        Bw' F_exc, the PTO forces as G' f_pto). With held coordinates: (P M[:, r])^-1 P on the kept rates' rows
+        (module docstring)."""
         nv = self.mass.shape[0]
         out = np.zeros((self.n_states, nv))
+        if self.held is not None:
+            condensed = _condense(self.mass, self.damping, self.stiffness, self.held)
+            n_r = condensed.kept.size
+            out[n_r : 2 * n_r] = np.linalg.solve(condensed.mass, condensed.projection)
+            return out
         out[nv : 2 * nv] = np.linalg.inv(self.mass)
         return out
+
+    def refuse_held(self, caller: str) -> None:
+        """For the uses that take the generalised coordinates as the first states (``caller`` names the use).
+
+        Raises
+        ------
+        ValueError
+            If coordinates are held quasi-static (their values are outputs with a feedthrough of the forces,
+            :meth:`coordinate_maps`, not states).
+        """
+        if self.held is not None:
+            raise ValueError(
+                f"{caller}: the linear model condenses {int(np.count_nonzero(self.held))} modal coordinates held "
+                f"quasi-static (flexible.quasi_static_above; velocities {np.flatnonzero(self.held).tolist()}) out "
+                "of its states, and this use needs every coordinate among them; leave quasi_static_above out, or "
+                "run the scene with solver.method 'generalized-alpha', 'linear' or 'frequency'"
+            )
+
+    def output_maps(self) -> tuple[np.ndarray, np.ndarray]:
+        """Rows (3 nv, n_states) and feedthrough (3 nv, nv) with [xi; xi_dot; xi_ddot] = rows x + feed f, for the
+        state x and the generalised forces f (``force_input``'s) [SI]: the displacements of :meth:`coordinate_maps`,
+        the rates (a held coordinate's zero) and the accelerations (a held coordinate's zero)."""
+        nv, n = self.mass.shape[0], self.n_states
+        a = np.asarray(self.state_space.A)
+        rows, feed = np.zeros((3 * nv, n)), np.zeros((3 * nv, nv))
+        if self.held is None:
+            rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
+            rows[2 * nv :] = a[nv : 2 * nv]
+            feed[2 * nv :] = self.force_input[nv : 2 * nv]
+            return rows, feed
+        kept = np.flatnonzero(~self.held)
+        n_r = kept.size
+        rows[:nv], feed[:nv] = self.coordinate_maps()
+        rows[nv + kept, n_r : 2 * n_r] = np.eye(n_r)
+        rows[2 * nv + kept] = a[n_r : 2 * n_r]
+        feed[2 * nv + kept] = self.force_input[n_r : 2 * n_r]
+        return rows, feed
+
+    def coordinate_maps(self) -> tuple[np.ndarray, np.ndarray]:
+        """X (nv, n_states) and Y (nv, nv) with the generalised displacements from the equilibrium xi = X x + Y f,
+        for the state x and the generalised forces f (``force_input``'s: Bw' F_exc + G' f_pto) [SI]: xi is the
+        first nv states (Y = 0) unless coordinates are held, whose values the held rows give (module
+        docstring)."""
+        nv = self.mass.shape[0]
+        n = self.n_states
+        if self.held is None:
+            return np.eye(nv, n), np.zeros((nv, nv))
+        assert self.radiation is not None
+        return _coordinate_maps(
+            _condense(self.mass, self.damping, self.stiffness, self.held), np.asarray(self.state_space.A),
+            self.mass, self.damping, self.stiffness, self.hydro_jacobian, self.radiation,
+        )  # fmt: skip
 
     @property
     def modal_form(self) -> ModalForm:
@@ -310,8 +424,10 @@ class LinearModel:
         rad = self.radiation
         assert rad is not None
         nv = self.mass.shape[0]
+        held = {} if self.held is None else {"quasi_static": (("dof",), self.held, {"long_name": "held quasi-static"})}
         return xr.Dataset(
             {
+                **held,
                 "A": (("state", "state_col"), np.asarray(sys.A), {"long_name": "state matrix"}),
                 "B": (("state", "input"), np.asarray(sys.B), {"long_name": "input matrix"}),
                 "C": (("output", "state"), np.asarray(sys.C), {"long_name": "output matrix"}),
@@ -344,7 +460,7 @@ class LinearModel:
                 "state": list(sys.state_labels),
                 "input": list(sys.input_labels),
                 "output": list(sys.output_labels),
-                "dof": list(sys.state_labels[:nv]),
+                "dof": list(sys.output_labels[:nv]),
                 "hydro_dof": list(rad.dofs),
                 "omega": self.hydro.omega,
                 "pto": [label.removeprefix("force__") for label in sys.input_labels[len(rad.dofs) :]],
@@ -381,7 +497,8 @@ class LinearModel:
         return cls(
             ds.mass.values, ds.damping.values, ds.stiffness.values, ds.database_mass.values, ds.hydro_jacobian.values,
             ds.pto_jacobian.values.reshape(ds.sizes["pto"], -1), hydro, ds.q0.values, ds.pto_stroke.values,
-            ds.pto_damping.values, ds.pto_stiffness.values, rad, sys,
+            ds.pto_damping.values, ds.pto_stiffness.values, rad, sys, None, None,
+            ds.quasi_static.values.astype(bool) if "quasi_static" in ds else None,
         )  # fmt: skip
 
     def discretise(self, dt: float, hold: str = "foh") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -532,11 +649,15 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
         compiled.hydro.omega, ds.added_mass.values - ds.added_mass_inf.values[None], ds.radiation_damping.values
     )
     rad = radiation.real_modal() if radiation is not None else _radiation_model(compiled)
+    quasi_static = np.asarray(compiled.device.model.quasi_static_velocities, dtype=bool)
+    held = quasi_static.copy() if quasi_static.any() else None
+    if held is not None:
+        _condense(mass, damping, stiffness, held)  # refused here if the held coordinates have no stiffness
     drag = None
     if compiled.scene.hydrodynamics.drag:  # the body drag linearised in the sea state (wecss.linear._drag)
         bare = LinearModel(
             mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
-            p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, None,
+            p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, None, None, held,
         )  # fmt: skip
         drag = linearise_drag(compiled, bare.dynamic_stiffness, bw)
         if drag is not None:
@@ -551,10 +672,10 @@ def _linearize(compiled: CompiledScene, radiation: RadiationStateSpace | None) -
             tuple(compiled.hydro.dofs),
             compiled.device.name,
         )  # only the names: the cached model must not keep the compiled scene alive
-        build = partial(_state_space, labels, rad, mass, damping, stiffness, bw, g)
+        build = partial(_state_space, labels, rad, mass, damping, stiffness, bw, g, held)
     return LinearModel(
         mass, damping, stiffness, 0.5 * (database + database.T), bw, g, hydro, compiled.q0, stroke,
-        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, build, drag,
+        p.pto_damping.copy(), p.pto_stiffness.copy(), rad, None, build, drag, held,
     )  # fmt: skip
 
 
@@ -567,6 +688,89 @@ class _Labels:
     hydro_dofs: tuple[str, ...]
     device: str
 
+    @classmethod
+    def of(cls, system: control.StateSpace, nv: int) -> _Labels:
+        """The names of a system made by :func:`_state_space` (``nv`` generalised velocities)."""
+        inputs = list(system.input_labels)
+        return cls(
+            tuple(system.output_labels[:nv]),
+            tuple(label.removeprefix("force__") for label in inputs if label.startswith("force__")),
+            tuple(label.removeprefix("excitation__") for label in inputs if label.startswith("excitation__")),
+            str(system.name).removesuffix(" linearised"),
+        )
+
+
+@dataclass(frozen=True)
+class _Condensed:
+    """The static condensation of the held coordinates (module docstring): the kept and held velocities' indices,
+    P = [I, -K_rh K_hh^-1] (n_r, nv) on the velocities' order, and the condensed P M[:, r], P C[:, r], P K[:, r]
+    (n_r, n_r)."""
+
+    kept: np.ndarray
+    held: np.ndarray
+    projection: np.ndarray
+    mass: np.ndarray
+    damping: np.ndarray
+    stiffness: np.ndarray
+
+
+def _condense(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray, held: np.ndarray) -> _Condensed:
+    """The condensation of the coordinates ``held`` (nv,) bool out of M, C, K (nv, nv).
+
+    Raises
+    ------
+    ValueError
+        If the held coordinates' stiffness K_hh is singular (their equations cannot be solved for them).
+    """
+    kept, out = np.flatnonzero(~held), np.flatnonzero(held)
+    k_hh = stiffness[np.ix_(out, out)]
+    if np.linalg.matrix_rank(k_hh) < out.size:
+        raise ValueError(
+            f"the stiffness of the {out.size} coordinates held quasi-static (flexible.quasi_static_above) is "
+            "singular: their algebraic equations do not fix them (hold only modal coordinates with a stiffness)"
+        )
+    transfer = np.linalg.solve(k_hh.T, stiffness[np.ix_(kept, out)].T).T  # K_rh K_hh^-1
+    projection = np.zeros((kept.size, held.size))
+    projection[:, kept] = np.eye(kept.size)
+    projection[:, out] = -transfer
+    return _Condensed(
+        kept, out, projection, projection @ mass[:, kept], projection @ damping[:, kept],
+        projection @ stiffness[:, kept],
+    )  # fmt: skip
+
+
+def _coordinate_maps(
+    condensed: _Condensed,
+    a: np.ndarray,
+    mass: np.ndarray,
+    damping: np.ndarray,
+    stiffness: np.ndarray,
+    bw: np.ndarray,
+    rad: RadiationStateSpace,
+) -> tuple[np.ndarray, np.ndarray]:
+    """X (nv, n) and Y (nv, nv) with xi = X x + Y f for the condensed system's state matrix ``a`` (n, n): the kept
+    coordinates are the first states, the held ones xi_h = K_hh^-1 (f_h - Bw_h' C_r r - M_hr xi_ddot_r -
+    C_hr xi_dot_r - K_hr xi_r) with xi_ddot_r = a[n_r:2 n_r] x + (P M[:, r])^-1 P f."""
+    kept, out = condensed.kept, condensed.held
+    n_r, nv, n = kept.size, mass.shape[0], a.shape[0]
+    acceleration_state = a[n_r : 2 * n_r]
+    acceleration_force = np.linalg.solve(condensed.mass, condensed.projection)
+    k_hh = stiffness[np.ix_(out, out)]
+    m_hr = mass[np.ix_(out, kept)]
+    rows = np.zeros((out.size, n))  # the held rows' loads from the state, less the inertia of the kept motion
+    rows[:, :n_r] = -stiffness[np.ix_(out, kept)]
+    rows[:, n_r : 2 * n_r] = -damping[np.ix_(out, kept)]
+    rows[:, 2 * n_r :] = -bw[:, out].T @ rad.C
+    rows -= m_hr @ acceleration_state
+    force = -m_hr @ acceleration_force
+    force[:, out] += np.eye(out.size)
+    x_map = np.zeros((nv, n))
+    y_map = np.zeros((nv, nv))
+    x_map[kept, :n_r] = np.eye(n_r)
+    x_map[out] = np.linalg.solve(k_hh, rows)
+    y_map[out] = np.linalg.solve(k_hh, force)
+    return x_map, y_map
+
 
 def _state_space(
     labels: _Labels,
@@ -576,8 +780,12 @@ def _state_space(
     stiffness: np.ndarray,
     bw: np.ndarray,
     g: np.ndarray,
+    held: np.ndarray | None = None,
 ) -> control.StateSpace:
-    """The state-space system of the module docstring with named states, inputs and outputs."""
+    """The state-space system of the module docstring with named states, inputs and outputs; with ``held``
+    (nv,) bool, the held coordinates condensed out (:func:`_condensed_space`)."""
+    if held is not None:
+        return _condensed_space(labels, rad, mass, damping, stiffness, bw, g, held)
     nv = mass.shape[0]
     nz = rad.n_states
     n_h, n_pto = bw.shape[0], g.shape[0]
@@ -613,6 +821,62 @@ def _state_space(
             *(f"{n}__rate" for n in names),
             *(f"stroke__{n}" for n in ptos),
             *(f"stroke_rate__{n}" for n in ptos),
+        ],
+        name=f"{labels.device} linearised",
+    )
+
+
+def _condensed_space(
+    labels: _Labels,
+    rad: RadiationStateSpace,
+    mass: np.ndarray,
+    damping: np.ndarray,
+    stiffness: np.ndarray,
+    bw: np.ndarray,
+    g: np.ndarray,
+    held: np.ndarray,
+) -> control.StateSpace:
+    """The state-space system with the ``held`` coordinates condensed out (module docstring): states [xi_r,
+    xi_dot_r, r], the same inputs, and the same outputs (every coordinate, a held one's rate zero, the PTO strokes
+    and rates), a held coordinate's value through the feedthrough D."""
+    condensed = _condense(mass, damping, stiffness, held)
+    kept = condensed.kept
+    nv, n_r, nz = mass.shape[0], kept.size, rad.n_states
+    n_h, n_pto = bw.shape[0], g.shape[0]
+    n = 2 * n_r + nz
+    to_rate = np.linalg.solve(condensed.mass, condensed.projection)  # generalised force -> kept accelerations
+    a = np.zeros((n, n))
+    a[:n_r, n_r : 2 * n_r] = np.eye(n_r)
+    a[n_r : 2 * n_r, :n_r] = -np.linalg.solve(condensed.mass, condensed.stiffness)
+    a[n_r : 2 * n_r, n_r : 2 * n_r] = -np.linalg.solve(condensed.mass, condensed.damping)
+    a[n_r : 2 * n_r, 2 * n_r :] = -to_rate @ bw.T @ rad.C
+    a[2 * n_r :, n_r : 2 * n_r] = rad.B @ bw[:, kept]
+    a[2 * n_r :, 2 * n_r :] = rad.A
+    forces = np.hstack([bw.T, g.T])  # inputs -> generalised forces (nv, n_h + n_pto)
+    bmat = np.zeros((n, n_h + n_pto))
+    bmat[n_r : 2 * n_r] = to_rate @ forces
+    x_map, y_map = _coordinate_maps(condensed, a, mass, damping, stiffness, bw, rad)
+    rate_map = np.zeros((nv, n))
+    rate_map[kept, n_r : 2 * n_r] = np.eye(n_r)
+    c = np.vstack([x_map, rate_map, g @ x_map, g @ rate_map])
+    d = np.vstack([y_map, np.zeros((nv, nv)), g @ y_map, np.zeros((n_pto, nv))]) @ forces
+    names = list(labels.velocities)
+    kept_names = [names[k] for k in kept]
+    ptos = list(labels.ptos)
+    import control
+
+    return control.ss(
+        a,
+        bmat,
+        c,
+        d,
+        states=[*kept_names, *(f"{name}__rate" for name in kept_names), *(f"radiation_{k}" for k in range(nz))],
+        inputs=[*(f"excitation__{dof}" for dof in labels.hydro_dofs), *(f"force__{pto}" for pto in ptos)],
+        outputs=[
+            *names,
+            *(f"{name}__rate" for name in names),
+            *(f"stroke__{pto}" for pto in ptos),
+            *(f"stroke_rate__{pto}" for pto in ptos),
         ],
         name=f"{labels.device} linearised",
     )

@@ -20,6 +20,11 @@ are at rest there). The equations are those of the compiled plant about that res
 mass (a flexible body's M(xi) at its deflection), the static stiffness of the PTO springs and the structure
 (``StaticModel`` without gravity and water) and the damping of the PTOs' linear gains, the joints and the
 structure. As ``wecss.devices.structural_modes(device, water=False)``.
+
+Modal coordinates held quasi-static (``flexible.quasi_static_above``) have no rate and no acceleration, as in the
+linear model (``wecss.linear._model``): the table has a mode per kept coordinate, from the condensed pencil (not
+symmetric: its damping ratios take the left and right eigenvectors), its shapes on every coordinate (the held ones'
+values from their equations).
 """
 
 from __future__ import annotations
@@ -30,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
-from scipy.linalg import eigh
+from scipy.linalg import eig, eigh
 
 from ..compiled import CompiledScene, linear_damping
 from ..compiled.kernels import kinematics, pto_strokes
@@ -43,7 +48,8 @@ from ._node_shapes import PARTS, node_maps
 class _Matrices:
     """The undamped eigenproblem's matrices about the configuration ``q``: ``stiffness``, the mass the fixed point
     starts from (``start``: M* with the database's A_inf), and the ``mass`` and ``damping`` at a frequency [rad/s];
-    ``band`` the frequencies the database knows A(omega) and B(omega) at (None: in air, no frequency dependence)."""
+    ``band`` the frequencies the database knows A(omega) and B(omega) at (None: in air, no frequency dependence);
+    ``held`` the generalised velocities held quasi-static (None: none)."""
 
     q: np.ndarray
     stiffness: np.ndarray
@@ -51,6 +57,7 @@ class _Matrices:
     mass: Callable[[float], np.ndarray]
     damping: Callable[[float], np.ndarray]
     band: tuple[float, float] | None
+    held: np.ndarray | None = None
 
 
 def _in_water(compiled: CompiledScene) -> _Matrices:
@@ -66,7 +73,13 @@ def _in_water(compiled: CompiledScene) -> _Matrices:
         return lin.damping + bw.T @ lin.hydro.at(np.array([omega]))[1][0] @ bw
 
     return _Matrices(
-        lin.q0, lin.stiffness, lin.database_mass, mass, damping, (float(data_omega[0]), float(data_omega[-1]))
+        lin.q0,
+        lin.stiffness,
+        lin.database_mass,
+        mass,
+        damping,
+        (float(data_omega[0]), float(data_omega[-1])),
+        lin.held,
     )
 
 
@@ -86,7 +99,10 @@ def _in_air(compiled: CompiledScene) -> _Matrices:
     mass = b.T @ body_mass_matrix(model, q) @ b
     mass = 0.5 * (mass + mass.T)
     damping = linear_damping(p, g, np.zeros((p.hydro_index.size, model.nv)))  # no moorings: no water
-    return _Matrices(q, statics.stiffness(q), mass, lambda omega: mass, lambda omega: damping, None)
+    held = np.asarray(model.quasi_static_velocities, dtype=bool)
+    return _Matrices(
+        q, statics.stiffness(q), mass, lambda omega: mass, lambda omega: damping, None, held if held.any() else None
+    )
 
 
 def modal_table(compiled: CompiledScene, *, water: bool = True, iterations: int = 50) -> xr.Dataset:
@@ -104,7 +120,8 @@ def modal_table(compiled: CompiledScene, *, water: bool = True, iterations: int 
     ``node_rotation`` [rad] of the mode shape ``shape`` as scaled there, world axes, split into the ``global``
     part (the rigid motion of the body's floating frame carried to the node) and the ``elastic`` part (the
     Craig-Bampton basis Phi times the mode's modal coordinates); their sum over ``part`` is the node's motion
-    (``wecss.linear._node_shapes``).
+    (``wecss.linear._node_shapes``). Modal coordinates held quasi-static (``flexible.quasi_static_above``) are
+    condensed (module docstring): one mode per kept coordinate, the shapes on every coordinate.
 
     Parameters
     ----------
@@ -144,6 +161,42 @@ def modal_table(compiled: CompiledScene, *, water: bool = True, iterations: int 
     if not compiled.linear_controller:
         raise ValueError("the modal table needs a controller with linear gains (such as 'damping')")
     matrices = _in_water(compiled) if water else _in_air(compiled)
+    solve = _modes if matrices.held is None else _condensed_modes
+    periods, ratios, shapes, converged = solve(matrices, iterations)
+    order = np.argsort(-periods, kind="stable")
+    names = list(compiled.device.model.velocity_names)
+    method = (
+        "fixed point on A(omega); damping from B(omega) and PTO"
+        if water
+        else "in air: no water, no gravity, about the rest of the PTO springs and structure; damping from the PTO, "
+        "the joints and the structure"
+    )
+    table = xr.Dataset(
+        {
+            "period": (
+                ("mode",),
+                periods[order],
+                {
+                    "long_name": "natural period (undamped, with the added mass at its own frequency)"
+                    if water
+                    else "natural period (undamped, in air)",
+                    "units": "s",
+                },
+            ),
+            "converged": (("mode",), converged[order], {"long_name": "fixed point converged"}),
+            "damping_ratio": (("mode",), ratios[order], {"long_name": "modal damping ratio", "units": "1"}),
+            "shape": (("mode", "dof"), shapes[order], {"long_name": "mode shape, largest entry 1", "units": "1"}),
+        },
+        coords={"mode": np.arange(periods.size), "dof": names},
+        attrs={"device": compiled.device.name, "method": method},
+    )
+    if compiled.device.model.elastic_bodies:
+        table = _with_nodes(table, compiled, matrices.q, shapes[order])
+    return table
+
+
+def _modes(matrices: _Matrices, iterations: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Periods [s], damping ratios, shapes (mode, dof) and convergence of every mode (see :func:`modal_table`)."""
     stiffness, mass, damping = matrices.stiffness, matrices.mass, matrices.damping
     values, vectors = eigh(stiffness, matrices.start)
     nv = values.size
@@ -179,36 +232,71 @@ def modal_table(compiled: CompiledScene, *, water: bool = True, iterations: int 
         periods[j] = 2 * np.pi / omega
         ratios[j] = float(phi @ damping(w) @ phi) / (2 * m_j * omega)
         shapes[j] = phi / phi[np.argmax(np.abs(phi))]
-    order = np.argsort(-periods, kind="stable")
-    names = list(compiled.device.model.velocity_names)
-    method = (
-        "fixed point on A(omega); damping from B(omega) and PTO"
-        if water
-        else "in air: no water, no gravity, about the rest of the PTO springs and structure; damping from the PTO, "
-        "the joints and the structure"
-    )
-    table = xr.Dataset(
-        {
-            "period": (
-                ("mode",),
-                periods[order],
-                {
-                    "long_name": "natural period (undamped, with the added mass at its own frequency)"
-                    if water
-                    else "natural period (undamped, in air)",
-                    "units": "s",
-                },
-            ),
-            "converged": (("mode",), converged[order], {"long_name": "fixed point converged"}),
-            "damping_ratio": (("mode",), ratios[order], {"long_name": "modal damping ratio", "units": "1"}),
-            "shape": (("mode", "dof"), shapes[order], {"long_name": "mode shape, largest entry 1", "units": "1"}),
-        },
-        coords={"mode": np.arange(nv), "dof": names},
-        attrs={"device": compiled.device.name, "method": method},
-    )
-    if compiled.device.model.elastic_bodies:
-        table = _with_nodes(table, compiled, matrices.q, shapes[order])
-    return table
+    return periods, ratios, shapes, converged
+
+
+def _condensed_modes(matrices: _Matrices, iterations: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """As :func:`_modes` with the coordinates ``matrices.held`` held quasi-static (no rate, no acceleration; the
+    linear model's condensation, ``wecss.linear._model``): one mode per kept coordinate, the eigenvectors of the
+    condensed pencil (P K[:, r], P M(omega)[:, r]) with P = [I, -K_rh K_hh^-1] (not symmetric: left and right
+    vectors), the damping ratio psi' P C[:, r] phi / (2 omega psi' P M[:, r] phi) of the left and right vectors
+    psi, phi, and the shape on every coordinate, the held ones' from their rows: phi_h = -K_hh^-1 (K_hr -
+    omega^2 M_hr) phi_r."""
+    assert matrices.held is not None
+    stiffness, mass, damping = matrices.stiffness, matrices.mass, matrices.damping
+    kept, out = np.flatnonzero(~matrices.held), np.flatnonzero(matrices.held)
+    k_hh = stiffness[np.ix_(out, out)]
+    transfer = np.linalg.solve(k_hh.T, stiffness[np.ix_(kept, out)].T).T  # K_rh K_hh^-1
+
+    def condense(matrix: np.ndarray) -> np.ndarray:
+        return matrix[np.ix_(kept, kept)] - transfer @ matrix[np.ix_(out, kept)]
+
+    def pencil(m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Eigenvalues (ascending, real parts), left and right eigenvectors of (condensed K, m)."""
+        values, left, right = eig(condense(stiffness), m, left=True, right=True)
+        order = np.argsort(values.real)
+        return values.real[order], left[:, order], right[:, order]
+
+    values, lefts, rights = pencil(condense(matrices.start))
+    n_r, nv = kept.size, stiffness.shape[0]
+    tiny = 1e-9 * max(1.0, float(np.max(np.abs(values))))
+    periods = np.full(n_r, np.inf)
+    ratios = np.full(n_r, np.nan)
+    shapes = np.zeros((n_r, nv))
+    converged = np.ones(n_r, dtype=bool)
+    for j in range(n_r):
+        phi, psi = rights[:, j], lefts[:, j]
+        omega = float(np.sqrt(max(values[j], 0.0)))
+        w = omega
+        if values[j] > tiny and matrices.band is not None:
+            converged[j] = False
+            low, high = matrices.band
+            for _ in range(iterations):
+                w = float(np.clip(omega, low, high))
+                m = condense(mass(w))
+                vals, lefts_w, rights_w = pencil(m)
+                k = int(np.argmax(np.abs(lefts_w.conj().T @ m @ phi)))  # the mode that continues phi
+                phi, psi = rights_w[:, k], lefts_w[:, k]
+                new = float(np.sqrt(max(vals[k], 0.0)))
+                if abs(new - omega) <= 1e-10 * omega:
+                    omega = new
+                    converged[j] = True
+                    break
+                omega = new
+            w = float(np.clip(omega, low, high))
+        phi = np.real(phi / phi[np.argmax(np.abs(phi))])  # a real vector of a real eigenvalue, scaled
+        full = np.zeros(nv)
+        full[kept] = phi
+        if values[j] > tiny:
+            rows = stiffness[np.ix_(out, kept)] - omega**2 * mass(w)[np.ix_(out, kept)]
+            full[out] = -np.linalg.solve(k_hh, rows @ phi)
+            periods[j] = 2 * np.pi / omega
+            m_j = np.real(psi.conj() @ condense(mass(w)) @ phi)
+            ratios[j] = float(np.real(psi.conj() @ condense(damping(w)) @ phi) / (2 * m_j * omega))
+        else:
+            full[out] = -np.linalg.solve(k_hh, stiffness[np.ix_(out, kept)] @ phi)
+        shapes[j] = full / full[np.argmax(np.abs(full))]
+    return periods, ratios, shapes, converged
 
 
 def _with_nodes(table: xr.Dataset, compiled: CompiledScene, q: np.ndarray, shapes: np.ndarray) -> xr.Dataset:

@@ -36,7 +36,10 @@ def closed_loop(
     """Outputs ``rows @ x`` (n_t, n_out) and the PTO forces (n_t, n_pto), the force at row k acting over the step
     from k to k + 1 (the last row's is zero): ``feedback`` is called at every step but the last and its force held
     (zero-order hold) over the step, while the generalised forces ``force`` keep the ``hold`` given; from the state
-    ``x0`` (default: rest)."""
+    ``x0`` (default: rest). With coordinates held quasi-static (``model.held``) the strokes measured at step k take
+    the held values there (``LinearModel.output_maps``: fed through by the generalised force at k, the excitation's
+    and the command of the step before, as a nonlinear run's configuration at k); ``rows`` give the state's part
+    only."""
     form, steps = model.modal_form, model.modal_steps(dt, hold)
     nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
     g = model.pto_jacobian
@@ -46,8 +49,15 @@ def closed_loop(
     held_free = held.free_input0 @ g.T
     # strokes and rates from the modal coordinates and the free states
     measure = np.zeros((2 * n_pto, model.n_states))
-    measure[:n_pto, :nv] = g
-    measure[n_pto:, nv : 2 * nv] = g
+    through = None
+    if model.held is None:
+        measure[:n_pto, :nv] = g
+        measure[n_pto:, nv : 2 * nv] = g
+    else:  # held coordinates condensed: their values are outputs, fed through by the generalised force
+        rows, feed = model.output_maps()
+        measure[:n_pto] = g @ rows[:nv]
+        measure[n_pto:] = g @ rows[nv : 2 * nv]
+        through = g @ feed[:nv]  # (n_pto, nv)
     measure_modes, measure_free = form.output_maps(measure)
     forcing, free_forcing = input_forcing(steps, force)
     free_modes = real_part_rows(steps.free_state.T)
@@ -66,6 +76,8 @@ def closed_loop(
 
     for k in range(n_t - 1):  # the force of the last row would act beyond the run
         measured = z[k].view(np.float64) @ measure_modes + free[k] @ measure_free
+        if through is not None:  # the held values at step k: the force now, the command of the step before
+            measured[:n_pto] += through @ (force[k] + (g.T @ command[k - 1] if k else 0.0))
         out = feedback(k, measured[:n_pto], measured[n_pto:], functools.partial(state_at, k))
         command[k] = out
         z[k + 1] = steps.decay * z[k] + forcing[k] + held_modes @ out

@@ -16,7 +16,9 @@ alpha x (o - c0)) and the angular-velocity products are of second order. Hence t
     sigma_hat = (S - omega^2 S_a + 2 sym(S_g) xi0) xi_hat + S_r r_hat,
 
 per wave component, exact for the linearised equations. The static value is sigma0 = S xi0 + S_r (g_b0, 0, 0) +
-xi0' S_g xi0.
+xi0' S_g xi0. Modal coordinates held quasi-static (``flexible.quasi_static_above``) have no acceleration, as in a
+run: the terms of the accelerations (-omega^2 S_a xi_hat, alpha, a_o) leave out their part (the condensed linear
+model of ``wecss.linear._model``); theta in the gravity term and xi_hat in S xi_hat are the displacements.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ import xarray as xr
 from ..compiled import CompiledScene
 from ..compiled.kernels import kinematics
 from ..structure import rigid_load_coordinates
-from ._frequency import _wave_amplitudes, frequency_domain_waves, response_amplitudes
+from ._frequency import _moving, _wave_amplitudes, frequency_domain_waves, response_amplitudes
 from ._model import equilibrium_maps, linearize
 
 
@@ -48,8 +50,7 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
     Raises
     ------
     ValueError
-        In calm water, for a controller without linear gains, for a device without elastic bodies or with modal
-        coordinates held quasi-static (``flexible.quasi_static_above``: the linear model keeps them dynamic), and
+        In calm water, for a controller without linear gains, for a device without elastic bodies, and
         in a directional sea (``sea.spreading``: several components per frequency, no response per unit wave).
     TypeError
         If ``compiled`` is not a CompiledScene.
@@ -62,7 +63,9 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
             "in its equations"
         )
     omega = exc.omega
-    amplitudes = response_amplitudes(linearize(compiled), omega, exc.coefficients)  # (nv, n_w)
+    linear = linearize(compiled)
+    amplitudes = response_amplitudes(linear, omega, exc.coefficients)  # (nv, n_w)
+    moving = _moving(linear, amplitudes)  # the accelerations' amplitudes / -omega^2: none of a held coordinate
     b0 = equilibrium_maps(compiled)[0]
     q0 = compiled.q0
     names: list[str] = []
@@ -84,13 +87,14 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
         s = model.cart_start[i]
         xi_hat = amplitudes[own]  # (n, n_w)
         theta = b0[s + 3 : s + 6] @ amplitudes  # body axes
-        centre = rot0.T @ (b0[s : s + 3] @ amplitudes)  # body axes
+        turning = b0[s + 3 : s + 6] @ moving  # the rotation the accelerations see
+        centre = rot0.T @ (b0[s : s + 3] @ moving)  # body axes
         g_b0 = rot0.T @ np.array([0.0, 0.0, -compiled.hydro.g])
         d0 = shift @ xi0
         arm = structure.invariants.origin - inv.origin  # the stress modes' origin from the frame's c0
         w2 = omega**2
-        alpha = -w2 * theta
-        origin_acc = -w2 * (centre - np.cross(theta, d0, axis=0) - shift @ xi_hat) + np.cross(alpha, arm, axis=0)
+        alpha = -w2 * turning
+        origin_acc = -w2 * (centre - np.cross(turning, d0, axis=0) - shift @ moving[own]) + np.cross(alpha, arm, axis=0)
         gravity = np.cross(g_b0, theta, axis=0)
         r_hat = np.concatenate([gravity - origin_acc, alpha, np.zeros((6, omega.size))])  # (12, n_w): RIGID_LOADS
         r0 = rigid_load_coordinates(g_b0, np.zeros(3), np.zeros(3))
@@ -99,7 +103,7 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
             (modes.shear, modes.shear_acceleration, modes.shear_rigid, modes.shear_geometric, shear, shear0),
         ):
             tangent = lin if geo is None else lin + np.einsum("pmk,m->pk", geo + geo.transpose(0, 2, 1), xi0)
-            out.append(tangent @ xi_hat - (acc @ xi_hat) * w2 + rig @ r_hat)
+            out.append(tangent @ xi_hat - (acc @ moving[own]) * w2 + rig @ r_hat)
             static = lin @ xi0 + rig @ r0
             out0.append(static if geo is None else static + np.einsum("m,pmk,k->p", xi0, geo, xi0))
         names += [p.name for p in modes.points]

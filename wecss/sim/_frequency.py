@@ -30,6 +30,7 @@ class FrequencyDomain(Runner):
         transient=False,
         hydrodynamics=("drag",),
         order=0,
+        quasi_static=True,
     )
 
     def check_compiled(self, compiled: Any) -> None:
@@ -56,6 +57,10 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
     ------
     ValueError
         For a device with a free base (its coordinates are not linear).
+
+    Modal coordinates held quasi-static (``flexible.quasi_static_above``) are condensed in the linear model
+    (``wecss.linear.linearize``): their values move, their rates and accelerations are zero, as a generalised-alpha
+    run records them, and so is their part of the PTO stroke rates and of the hydro velocities.
     """
     if compiled.device.model.nq != compiled.device.model.nv:
         raise ValueError("the frequency-domain run needs joint coordinates (no free base)")
@@ -72,6 +77,10 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
     else:
         omega, coefficients = compiled.excitation.omega, compiled.excitation.coefficients
         amplitudes = response_amplitudes(model, omega, coefficients)  # (nv, n_w)
+    moving = amplitudes  # the amplitudes the rates and accelerations see: none of a held coordinate
+    if model.held is not None:
+        moving = amplitudes.copy()
+        moving[model.held] = 0.0
 
     def signal(values: np.ndarray, times: np.ndarray) -> np.ndarray:
         """Re[sum_k values[:, k] exp(i omega_k t)] at ``times`` (n_t, n_rows)."""
@@ -80,20 +89,20 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
         return np.real(evaluate(values, omega, times)).T
 
     xi = signal(amplitudes, time)
-    rate = signal(1j * omega * amplitudes, time)
+    rate = signal(1j * omega * moving, time)
     stroke = model.pto_stroke[None] + xi @ model.pto_jacobian.T
     stroke_rate = rate @ model.pto_jacobian.T
     pto_force = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, stroke, stroke_rate) - p.pto_spring * stroke
     power = continuous_power(compiled, stroke, stroke_rate, pto_force)  # linear gains: a continuous force
     stats = window_statistics(compiled, stroke, power)
     saved = time[keep]
-    velocity_hat = 1j * omega * (model.hydro_jacobian @ amplitudes)  # hydro-DOF velocities (n_h, n_w)
+    velocity_hat = 1j * omega * (model.hydro_jacobian @ moving)  # hydro-DOF velocities (n_h, n_w)
     added, damping = model.hydro.at(omega)
     memory_hat = -np.einsum("wij,jw->iw", damping + 1j * omega[:, None, None] * added, velocity_hat)
     series = {
         "q": compiled.q0[None] + xi[keep],
         "v": rate[keep],
-        "a": signal(-(omega**2) * amplitudes, saved),
+        "a": signal(-(omega**2) * moving, saved),
         "x": stroke[keep],
         "xd": stroke_rate[keep],
         "f": pto_force[keep],
@@ -114,6 +123,7 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
     )
     record.run_time = _time.perf_counter() - start
     stroke_hat = model.pto_jacobian @ amplitudes
+    rate_hat = 1j * omega * stroke_hat if model.held is None else 1j * omega * (model.pto_jacobian @ moving)
     rest = model.pto_stroke
     c, k, spring = p.pto_damping[:, None], p.pto_stiffness[:, None], p.pto_spring[:, None]
     record.spectral = Spectral(
@@ -121,9 +131,9 @@ def run_frequency_domain(compiled: ControlledScene) -> Record:
         {"q": compiled.q0, "v": np.zeros(nv), "a": np.zeros(nv), "x": rest, "xd": np.zeros_like(rest),
          "f": pto_control_force(0.0, p.pto_damping, p.pto_stiffness, rest, 0.0) - p.pto_spring * rest,
          "h": np.zeros(n_h)},
-        {"q": amplitudes, "v": 1j * omega * amplitudes, "a": -(omega**2) * amplitudes, "x": stroke_hat,
-         "xd": 1j * omega * stroke_hat,
-         "f": pto_control_force(0.0, c, k, stroke_hat, 1j * omega * stroke_hat) - spring * stroke_hat,
+        {"q": amplitudes, "v": 1j * omega * moving, "a": -(omega**2) * moving, "x": stroke_hat,
+         "xd": rate_hat,
+         "f": pto_control_force(0.0, c, k, stroke_hat, rate_hat) - spring * stroke_hat,
          "h": memory_hat + coefficients},
     )  # fmt: skip
     limits = (p.pto_force_limit, p.pto_stroke_limit)

@@ -36,6 +36,7 @@ class LinearRunner(Runner):
         hydrodynamics=("drag",),
         order=2,
         tolerance=True,
+        quasi_static=True,
     )
     radiation_reason = "the linear model carries the radiation memory as states"
 
@@ -78,6 +79,13 @@ def simulate_linear(
     ValueError
         For a device with a free base (its coordinates are not linear), an unknown ``hold``, or a scene whose
         radiation memory is not a state-space model (``wecss.linear.NoStateSpace``).
+    SceneError
+        If ``initial`` gives a modal coordinate held quasi-static a displacement or a velocity.
+
+    Modal coordinates held quasi-static (``flexible.quasi_static_above``) are condensed in the model
+    (``wecss.linear.linearize``): its states are the kept coordinates, their values the outputs with the
+    generalised force's feedthrough, their rates and accelerations zero, as a generalised-alpha run records them;
+    a controller's ``measurement.state`` is then the condensed model's state.
     """
     if isinstance(compiled, str | Path):
         compiled = Scene.from_toml(compiled)
@@ -117,7 +125,7 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
     x0 = _initial_state(compiled, model)
     if not closed:
         y = open_loop(model, compiled.dt, hold, force, _output_rows(model, with_radiation), x0)
-        stroke = stroke0[None] + y[:, :nv] @ g.T
+        stroke = stroke0[None] + _coordinates(model, y, force) @ g.T
         wanted = pto_control_force(0.0, p.pto_damping, p.pto_stiffness, stroke, y[:, nv : 2 * nv] @ g.T)
         closed = limited and bool(
             np.any(np.abs(wanted) > p.pto_force_limit) or np.any(np.abs(stroke) > p.pto_stroke_limit)
@@ -132,9 +140,12 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
         applied = np.concatenate([np.zeros((1, n_pto)), applied[:-1]])
     every = compiled.scene.outputs.every
     keep = slice(None, None, every)
-    acc = y[keep, 2 * nv : 3 * nv] + force[keep] @ model.force_input[nv : 2 * nv].T
+    if model.held is None:
+        acc = y[keep, 2 * nv : 3 * nv] + force[keep] @ model.force_input[nv : 2 * nv].T
+    else:  # the kept accelerations' feedthrough of the force (a held coordinate's acceleration is zero)
+        acc = y[keep, 2 * nv : 3 * nv] + force[keep] @ model.output_maps()[1][2 * nv :].T
     rad = y[keep, 3 * nv :] if with_radiation else np.zeros((acc.shape[0], n_h))
-    xi, rate = y[:, :nv], y[:, nv : 2 * nv]
+    xi, rate = _coordinates(model, y, force), y[:, nv : 2 * nv]
     stroke = stroke0[None] + xi @ g.T
     stroke_rate = rate @ g.T
     pto_force = pto_control_force(applied, model.pto_damping, model.pto_stiffness, stroke, stroke_rate)
@@ -173,31 +184,68 @@ def linear_record(controlled: ControlledScene, model: LinearModel | None = None,
 
 def _initial_state(compiled: ControlledScene, model: LinearModel) -> np.ndarray | None:
     """The linear model's initial state for the scene's ``[initial]`` (None: at rest in the equilibrium): the
-    displacement and velocity increments as xi and xi_dot, no radiation memory."""
+    displacement and velocity increments as xi and xi_dot, no radiation memory.
+
+    Raises
+    ------
+    SceneError
+        If it gives a coordinate held quasi-static a displacement or a velocity (the condensed model has neither).
+    """
     if compiled.scene.initial.at_rest:
         return None
     delta, velocity = initial_increments(compiled.scene, compiled.device)
     nv = model.mass.shape[0]
     x0 = np.zeros(model.n_states)
+    if model.held is not None:  # the kept coordinates' (the held ones' values follow from their equations)
+        given = model.held & ((delta != 0) | (velocity != 0))
+        if np.any(given):
+            names = [name for name, g in zip(compiled.device.model.velocity_names, given, strict=True) if g]
+            raise SceneError(
+                f"initial.displacement or initial.velocity gives {names} a value, and they are held quasi-static "
+                "(flexible.quasi_static_above): in the linear model their values follow from their equations and "
+                "they have no rate; leave them out"
+            )
+        kept = ~model.held
+        n_r = int(np.count_nonzero(kept))
+        x0[:n_r], x0[n_r : 2 * n_r] = delta[kept], velocity[kept]
+        return x0
     x0[:nv], x0[nv : 2 * nv] = delta, velocity
     return x0
 
 
 def _output_rows(model: LinearModel, with_radiation: bool) -> np.ndarray:
     """Output rows of a linear run: xi, xi_dot, the acceleration's state part and (if asked for) the radiation
-    force."""
+    force (with held coordinates, ``LinearModel.output_maps``'s rows: the state's part of each)."""
     nv, n_h = model.mass.shape[0], model.hydro_jacobian.shape[0]
     rows = np.zeros((3 * nv + (n_h if with_radiation else 0), model.n_states))
-    rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
-    rows[2 * nv : 3 * nv] = np.asarray(model.state_space.A)[nv : 2 * nv]
+    if model.held is None:
+        rows[: 2 * nv, : 2 * nv] = np.eye(2 * nv)
+        rows[2 * nv : 3 * nv] = np.asarray(model.state_space.A)[nv : 2 * nv]
+    else:
+        rows[: 3 * nv] = model.output_maps()[0]
     if with_radiation:
         assert model.radiation is not None
-        rows[3 * nv :, 2 * nv :] = -model.radiation.C
+        rows[3 * nv :, 2 * model.n_kept :] = -model.radiation.C
     return rows
 
 
+def _coordinates(model: LinearModel, y: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """The generalised displacements xi (n_t, nv) of a linear run's outputs ``y`` (:func:`_output_rows`) and its
+    generalised forces ``force`` (n_t, nv): the held coordinates' values take their feedthrough."""
+    if model.held is None:
+        return y[:, : model.mass.shape[0]]
+    nv = model.mass.shape[0]
+    return y[:, :nv] + force @ model.output_maps()[1][:nv].T
+
+
 def _linear_state(model: LinearModel, x: np.ndarray) -> np.ndarray:
-    """The measurement's state of a linear run: q0 + xi, xi_dot and the radiation states."""
+    """The measurement's state of a linear run: q0 + xi, xi_dot and the radiation states (with coordinates held
+    quasi-static, the condensed model's state: the kept coordinates' q0 + xi, their rates and the radiation
+    states)."""
+    if model.held is not None:
+        out = x.copy()
+        out[: model.n_kept] += model.q0[~model.held]
+        return out
     nv = model.mass.shape[0]
     out = x.copy()
     out[:nv] += model.q0

@@ -92,6 +92,8 @@ def _check_waves(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray
 def pto_response(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The PTO stroke-rate amplitudes v_e (n_pto, n_w) the waves drive with no PTO force, and the PTO admittance Y
     (n_w, n_pto, n_pto) [m/s per N or rad/s per N m] of ``model`` (pass the open plant: ``model.with_pto_gains()``).
+    Modal coordinates held quasi-static (``model.held``) have no rate: their part of a stroke moves it, not its rate
+    (as in a run, whose PTO force and power see the kept coordinates' rates).
 
     Raises
     ------
@@ -100,6 +102,7 @@ def pto_response(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray
     """
     omega, coefficients = _check_waves(model, omega, coefficients)
     g = model.pto_jacobian
+    moving = g if model.held is None else g * ~model.held  # the stroke rates: a held coordinate has no rate
     rate = np.empty((omega.size, g.shape[0], 1 + g.shape[0]), dtype=complex)  # (n_w, n_pto, 1 + n_pto)
     for start in range(0, omega.size, RESPONSE_BLOCK):  # the database's matrices per frequency, a block at a time
         w = slice(start, start + RESPONSE_BLOCK)
@@ -107,7 +110,7 @@ def pto_response(model: LinearModel, omega: np.ndarray, coefficients: np.ndarray
         forcing = (model.hydro_jacobian.T @ coefficients[:, w]).T[:, :, None]  # Bw' F per component (n_w, nv, 1)
         inputs = np.broadcast_to(g.T.astype(complex), (z.shape[0], *g.T.shape))
         solved = np.linalg.solve(z, np.concatenate([forcing, inputs], axis=2))
-        rate[w] = 1j * omega[w, None, None] * (g @ solved)
+        rate[w] = 1j * omega[w, None, None] * (moving @ solved)
     return rate[:, :, 0].T, rate[:, :, 1:]
 
 

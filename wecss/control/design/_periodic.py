@@ -182,7 +182,8 @@ def periodic_response(
     forcing[index - low] = (model.hydro_jacobian.T @ coefficients).T
     inputs = np.broadcast_to(g.T.astype(complex), (harmonic.size, *g.T.shape))
     solved = np.linalg.solve(z, np.concatenate([forcing[:, :, None], inputs], axis=2))
-    rate = 1j * w[:, None, None] * (g @ solved)  # (n_m, n_pto, 1 + n_pto)
+    moving = g if model.held is None else g * ~model.held  # a held coordinate has no rate
+    rate = 1j * w[:, None, None] * (moving @ solved)  # (n_m, n_pto, 1 + n_pto)
     return PeriodicResponse(
         period=float(period), harmonic=harmonic, omega=w, free_rate=rate[:, :, 0], admittance=rate[:, :, 1:],
         stroke_at_equilibrium=np.asarray(model.pto_stroke, dtype=float).copy(), points=n,
@@ -199,6 +200,13 @@ def _dynamic_stiffness(model: LinearModel, omega: np.ndarray, response: str) -> 
         raise ValueError('response "fit" needs a model with a state-space radiation fit')
     bw = model.hydro_jacobian
     memory = model.radiation.frequency_response(omega)  # (n_w, n_h, n_h)
+    if model.held is not None:  # held coordinates: no rate, no acceleration (their columns of M and C out)
+        kept = (~model.held).astype(float)
+        return (
+            -(omega**2)[:, None, None] * (model.mass * kept)[None]
+            + 1j * omega[:, None, None] * ((model.damping * kept)[None] + bw.T @ memory @ (bw * kept))
+            + model.stiffness[None]
+        )
     return (
         -(omega**2)[:, None, None] * model.mass[None]
         + 1j * omega[:, None, None] * (model.damping[None] + bw.T @ memory @ bw)

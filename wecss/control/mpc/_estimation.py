@@ -53,7 +53,8 @@ class ExcitationEstimator:
     Raises
     ------
     ValueError
-        On shapes that disagree, non-positive noise or frequencies, or a model without state space.
+        On shapes that disagree, non-positive noise or frequencies, a model without state space, or one with
+        coordinates held quasi-static (``LinearModel.refuse_held``).
     """
 
     def __init__(
@@ -67,6 +68,7 @@ class ExcitationEstimator:
         damping_ratio: float = 0.05,
         directions: np.ndarray | None = None,
     ) -> None:
+        model.refuse_held("the excitation estimator")
         system = model.state_space
         nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
         directions = model.pto_jacobian.T if directions is None else np.asarray(directions, dtype=float)

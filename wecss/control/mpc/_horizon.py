@@ -57,12 +57,14 @@ class HorizonModel:
         Raises
         ------
         ValueError
-            For a non-positive period or fewer than one step.
+            For a non-positive period or fewer than one step, or a model with coordinates held quasi-static
+            (``LinearModel.refuse_held``).
         """
         if not period > 0:
             raise ValueError(f"period must be positive [s]; got {period!r}")
         if not (isinstance(steps, int) and steps >= 1):
             raise ValueError(f"steps must be an integer >= 1; got {steps!r}")
+        model.refuse_held("the MPC horizon model")
         a = np.asarray(model.state_space.A, dtype=float)
         inp = model.force_input  # generalised force -> state rate (n, nv)
         n, nv = inp.shape
