@@ -13,7 +13,7 @@ from scipy.linalg import expm
 
 from tests.sim.scenes import HeldDamping
 from wecss.control import compile_scene
-from wecss.control.mpc import ARPredictor, ExcitationEstimator, pto_referred
+from wecss.control.mpc import ARPredictor, ExcitationEstimator, WaveExcitationEstimator, pto_referred
 from wecss.linear import HydroResponse, LinearModel
 from wecss.sim import Scene, simulate
 
@@ -127,3 +127,75 @@ def test_bad_settings_are_refused():
         ARPredictor(3).predict(np.zeros(5), 2)
     with pytest.raises(ValueError, match="at least 7 finite samples"):
         ARPredictor(3).fit(np.zeros(4))
+
+
+def _two_bodies() -> LinearModel:
+    """Two masses on springs [kg, N/m, N s/m], coupled by a spring and by a PTO on their relative motion (G = [-1, 1]),
+    no radiation: the excitation acts on both coordinates."""
+    m = np.diag([10.0, 5.0])
+    c = np.diag([8.0, 3.0])
+    k = np.array([[800.0, -200.0], [-200.0, 300.0]])
+    a = np.block([[np.zeros((2, 2)), np.eye(2)], [-np.linalg.solve(m, k), -np.linalg.solve(m, c)]])
+    b = np.vstack([np.zeros((2, 2)), np.linalg.inv(m)])
+    system = control.ss(a, np.hstack([b, b @ np.array([[-1.0], [1.0]])]), np.eye(4), np.zeros((4, 3)))
+    w = np.linspace(0.1, 20.0, 50)
+    none = np.zeros((w.size, 2, 2))
+    return LinearModel(
+        mass=m, damping=c, stiffness=k, database_mass=m, hydro_jacobian=np.eye(2), pto_jacobian=np.array([[-1.0, 1.0]]),
+        hydro=HydroResponse(w, none, none), q0=np.zeros(2), pto_stroke=np.zeros(1), pto_damping=np.zeros(1),
+        pto_stiffness=np.zeros(1), radiation=None, system=system,
+    )  # fmt: skip
+
+
+def test_the_wave_estimator_recovers_every_coordinates_excitation_from_one_wave():
+    """Two coordinates excited by one long-crested wave through X(omega) = (40 e^{-0.3 i omega}, 25 e^{-0.8 i omega})
+    [N/m], 60 components between 3.5 and 7 rad/s; the simulation written here (exact steps of 2 ms, the excitation
+    held over each), the filter at 20 ms with the PTO on the relative motion. Measuring the PTO and the two
+    velocities it recovers both components to 2 % RMS after 20 s and resolves at least 95 % of their variance by its
+    own covariance; measuring the PTO alone it resolves less (one signal for two components)."""
+    model, dt, sub = _two_bodies(), 0.02, 10
+    rng = np.random.default_rng(7)
+    omega = np.linspace(3.5, 7.0, 60)
+    spectrum = np.exp(-0.5 * ((omega - 5.0) / 0.8) ** 2)
+    amplitude = np.sqrt(2 * spectrum * (omega[1] - omega[0])) * np.exp(2j * np.pi * rng.random(omega.size))
+    transfer = np.vstack([40 * np.exp(-0.3j * omega), 25 * np.exp(-0.8j * omega)])
+    coefficients = transfer * amplitude  # (2, n_w)
+    t = np.arange(0.0, 30.0, dt / sub)
+    excitation = np.real(np.exp(1j * np.outer(t, omega)) @ coefficients.T)  # (n_t, 2)
+    big = np.zeros((7, 7))
+    big[:4, :4] = np.asarray(model.state_space.A) * dt / sub
+    big[:4, 4:] = np.asarray(model.state_space.B) * dt / sub
+    step = expm(big)
+    x, force = np.zeros(4), 0.0
+    estimator = WaveExcitationEstimator.for_sea(model, dt, omega, coefficients, velocities=True)
+    pto_only = WaveExcitationEstimator.for_sea(model, dt, omega, coefficients)
+    estimates, truth = [], []
+    for k in range(t.size):
+        if k % sub == 0:
+            stroke, rate = x[1:2] - x[0:1], x[3:4] - x[2:3]
+            estimates.append(estimator.update(stroke, rate, None, x[2:4]))
+            truth.append(excitation[k])
+            force = -20.0 * rate[0]
+            estimator.hold(np.array([force]))
+        x = step[:4, :4] @ x + step[:4, 4:] @ np.concatenate([excitation[k], [force]])
+    estimates, truth = np.array(estimates), np.array(truth)
+    late = t[::sub] > 20.0
+    error = np.sqrt(np.mean((estimates[late] - truth[late]) ** 2, axis=0)) / np.std(truth[late], axis=0)
+    assert np.all(error < 0.02), error  # measured: 0.4 % and 0.5 %
+    assert np.all(estimator.resolved > 0.95), estimator.resolved
+    assert np.all(pto_only.resolved < estimator.resolved)  # measured: 0.89 and 0.97 against 0.999
+
+
+def test_the_wave_estimator_refuses_a_missing_velocity():
+    model = _two_bodies()
+    omega = np.linspace(3.5, 7.0, 10)
+    coefficients = np.vstack([np.ones(10), 0.5 * np.ones(10)]).astype(complex)
+    with_velocity = WaveExcitationEstimator.for_sea(model, 0.02, omega, coefficients, velocities=True)
+    with pytest.raises(ValueError, match="measures the generalised velocities: give velocity"):
+        with_velocity.update(np.zeros(1), np.zeros(1), None)
+    with pytest.raises(ValueError, match="velocity_std: expected 2 positive values"):
+        WaveExcitationEstimator(
+            model, 0.02, omega[:1], np.ones((2, 1)), np.ones(1), np.ones(2), velocity_std=np.ones(3)
+        )
+    with pytest.raises(ValueError, match=r"shapes: expected finite \(2, 1\)"):
+        WaveExcitationEstimator(model, 0.02, omega[:1], np.ones((3, 1)), np.ones(1), np.ones(2))

@@ -12,3 +12,4 @@ from ._prediction import ARPredictor as ARPredictor
 from ._qp_solvers import CvxpyPath as CvxpyPath
 from ._qp_solvers import OsqpPath as OsqpPath
 from ._qp_solvers import Solution as Solution
+from ._wave_estimation import WaveExcitationEstimator as WaveExcitationEstimator

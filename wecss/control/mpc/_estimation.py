@@ -21,12 +21,10 @@ without a solution.
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import expm, solve_discrete_are
 
 from ...linear import LinearModel
-
-LEAK: float = 1e-3
-"""Extra decay rate of the filter's plant model, relative to the lowest oscillator frequency [-]."""
+from ._kalman import LEAK as LEAK
+from ._kalman import pto_measure, steady_kalman
 
 
 class ExcitationEstimator:
@@ -67,7 +65,7 @@ class ExcitationEstimator:
         damping_ratio: float = 0.05,
         directions: np.ndarray | None = None,
     ) -> None:
-        system = model.state_space
+        n = model.n_states
         nv, n_pto = model.mass.shape[0], model.pto_jacobian.shape[0]
         directions = model.pto_jacobian.T if directions is None else np.asarray(directions, dtype=float)
         if directions.ndim != 2 or directions.shape[0] != nv:
@@ -86,19 +84,13 @@ class ExcitationEstimator:
             raise ValueError(f"measurement_std: expected {2 * n_pto} positive values; got {measurement_std!r}")
         if not 0 < damping_ratio < 1:
             raise ValueError(f"damping_ratio must lie in (0, 1); got {damping_ratio!r}")
-        a = np.array(system.A, dtype=float)
-        n = a.shape[0]
-        # modes at zero frequency (a free surge and its rate: no restoring force, no radiation damping at DC)
-        # cannot be seen by the PTOs: every mode of the filter's model decays a little faster, so that the filter
-        # exists (the Riccati equation needs a detectable model); wave-frequency dynamics are unchanged to 1e-3
-        a -= LEAK * float(np.min(frequencies)) * np.eye(n)
         estimated = np.flatnonzero(variance > 0)
         n_osc = frequencies.size
         m = 2 * n_osc * estimated.size  # oscillator states: (position, rate) per frequency per component
         # the oscillator bank: e_j = sum_i eta_ij; eta'' + 2 zeta w eta' + w^2 eta = q_ij white noise
         a_osc = np.zeros((m, m))
         out_osc = np.zeros((n_d, m))
-        noise = np.zeros((m, m))
+        noise = np.zeros(m)
         for c, j in enumerate(estimated):
             for i, w in enumerate(frequencies):
                 k = 2 * (c * n_osc + i)
@@ -107,41 +99,16 @@ class ExcitationEstimator:
                 a_osc[k + 1, k + 1] = -2 * damping_ratio * w
                 out_osc[j, k] = 1.0
                 # stationary variance of eta is q / (4 zeta w^3): the component's variance split over the bank
-                noise[k + 1, k + 1] = 4 * damping_ratio * w**3 * variance[j] / n_osc
-        force_input = model.force_input  # generalised force -> state derivative (n, nv)
-        big = np.zeros((n + m, n + m))
-        big[:n, :n] = a
-        big[:n, n:] = force_input @ directions @ out_osc
-        big[n:, n:] = a_osc
-        pto_input = force_input @ model.pto_jacobian.T  # (n, n_pto)
-        # exact step: the state transition, the held PTO force, and the integrated excitation noise (Van Loan)
-        q_big = np.zeros((n + m, n + m))
-        q_big[n:, n:] = noise
-        van_loan = np.zeros((2 * (n + m), 2 * (n + m)))
-        van_loan[: n + m, : n + m] = -big
-        van_loan[: n + m, n + m :] = q_big
-        van_loan[n + m :, n + m :] = big.T
-        e = expm(van_loan * dt)
-        phi = e[n + m :, n + m :].T
-        q_d = phi @ e[: n + m, n + m :]
-        held = np.zeros((n + m + n_pto, n + m + n_pto))
-        held[: n + m, : n + m] = big * dt
-        held[:n, n + m :] = pto_input * dt
-        gamma = expm(held)[: n + m, n + m :]
-        nv_rows = nv
-        measure = np.zeros((2 * n_pto, n + m))
-        measure[:n_pto, :nv_rows] = model.pto_jacobian
-        measure[n_pto:, nv_rows : 2 * nv_rows] = model.pto_jacobian
-        r = np.diag(measurement_std**2)
-        q_d = 0.5 * (q_d + q_d.T) + 1e-12 * np.max(np.abs(q_d)) * np.eye(n + m)
-        p = solve_discrete_are(phi.T, measure.T, q_d, r)
-        innovation = measure @ p @ measure.T + r
-        self.gain = p @ measure.T @ np.linalg.inv(innovation)
-        posterior = p - self.gain @ measure @ p
-        prior = np.diag(out_osc @ p[n:, n:] @ out_osc.T)
-        after = np.diag(out_osc @ posterior[n:, n:] @ out_osc.T)
+                noise[k + 1] = 4 * damping_ratio * w**3 * variance[j] / n_osc
+        kalman = steady_kalman(
+            model, dt, a_osc, noise, directions @ out_osc, pto_measure(model), measurement_std,
+            float(np.min(frequencies)),
+        )  # fmt: skip
+        prior = np.diag(out_osc @ kalman.predicted[n:, n:] @ out_osc.T)
+        after = np.diag(out_osc @ kalman.corrected[n:, n:] @ out_osc.T)
         self.observed = np.where(prior > 0, 1.0 - after / np.where(prior > 0, prior, 1.0), 0.0)
         """Share of each component's predicted variance one update resolves [-] (0: the PTOs do not see it)."""
+        self.gain, phi, gamma, measure = kalman.gain, kalman.phi, kalman.gamma, kalman.measure
         self.phi, self.gamma, self.measure, self.output = phi, gamma, measure, out_osc
         self.n_plant, self.stroke0 = n, model.pto_stroke.copy()
         self.x = np.zeros(n + m)
