@@ -60,7 +60,8 @@ def steady_kalman(
 ) -> SteadyKalman:
     """The filter of ``model``'s plant (n states) driven by the generalised force ``forcing`` @ z_osc of an
     oscillator bank z_osc' = ``oscillators`` z_osc + white noise of intensity diag(``noise``) (m,) [force^2 s per
-    state], measured through ``measure`` (n_y, n) (a map of the plant state) with noise ``measurement_std``
+    state], measured through ``measure`` (n_y, n) (a map of the plant state; (n_y, n + m) when the measurements
+    see oscillator states too, such as a bias) with noise ``measurement_std``
     (n_y,), stepped every ``dt`` [s]; the leak is LEAK x ``lowest_frequency`` [rad/s]."""
     n = model.n_states
     m = oscillators.shape[0]
@@ -70,8 +71,6 @@ def steady_kalman(
     big[:n, :n] = a
     big[:n, n:] = force_input @ forcing
     big[n:, n:] = oscillators
-    pto_input = force_input @ model.pto_jacobian.T  # (n, n_pto)
-    n_pto = pto_input.shape[1]
     q_big = np.zeros((n + m, n + m))
     q_big[n:, n:] = np.diag(noise)
     van_loan = np.zeros((2 * (n + m), 2 * (n + m)))
@@ -81,12 +80,14 @@ def steady_kalman(
     e = expm(van_loan * dt)
     phi = e[n + m :, n + m :].T
     q_d = phi @ e[: n + m, n + m :]
+    pto_input = force_input @ model.pto_jacobian.T  # (n, n_pto)
+    n_pto = pto_input.shape[1]
     held = np.zeros((n + m + n_pto, n + m + n_pto))
     held[: n + m, : n + m] = big * dt
     held[:n, n + m :] = pto_input * dt
     gamma = expm(held)[: n + m, n + m :]
     full_measure = np.zeros((measure.shape[0], n + m))
-    full_measure[:, :n] = measure
+    full_measure[:, : measure.shape[1]] = measure  # a map of the plant state, or of the whole augmented state
     r = np.diag(np.asarray(measurement_std, dtype=float) ** 2)
     q_d = 0.5 * (q_d + q_d.T) + 1e-12 * np.max(np.abs(q_d)) * np.eye(n + m)
     p = solve_discrete_are(phi.T, full_measure.T, q_d, r)
