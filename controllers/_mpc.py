@@ -51,7 +51,7 @@ penalty 0.01, 20 Tp) the nonlinear run's power went from 27 % below the linear o
 FORCE_PENALTY: dict[str, float] = {"perfect": 0.01, "causal": 0.1}
 """Default force penalty per preview. The causal loop is stable at 0.01 on m4-111 in the nonlinear simulator since
 the predictor's ridge (it diverged within 2 s), but its mean power there is 3.3 % below the linear simulator's
-(Hs 0.04 m, 20 Tp; 0.4 % at Hs 0.02 m) and 4.4 % on the Wavestar in WECCCOMP sea state 5, against 1 % sought:
+(Hs 0.04 m, 20 Tp; 0.5 % at Hs 0.02 m) and 4.4 % on the Wavestar in WECCCOMP sea state 5, against 1 % sought:
 the causal default stays 0.1."""
 
 
@@ -345,9 +345,8 @@ def _synthetic_record(
     model: LinearModel, omega: np.ndarray, coefficients: np.ndarray, period: float, order: int
 ) -> np.ndarray:
     """A record of the PTO-equivalent excitation (``pto_equivalent``: what the estimator estimates) (n_samples, n_pto)
-    sampled at ``period`` [s], with the sea
-    state's amplitudes and phases drawn afresh (seeded): what the AR predictor learns from is the spectrum, not the
-    run's record."""
+    sampled at ``period`` [s], with the sea state's amplitudes and phases drawn afresh (seeded): what the AR predictor
+    learns from is the spectrum, not the run's record."""
     referred = pto_equivalent(model, omega, model.hydro_jacobian.T @ np.asarray(coefficients, dtype=complex))
     phases = np.exp(2j * np.pi * np.random.default_rng(20261123).random(omega.size))
     n = max(4000, 100 * order)
