@@ -213,3 +213,65 @@ def test_a_reused_controller_plans_as_a_fresh_one():
         again = simulate(sc, controller=reused).pto_torque.values
         fresh = simulate(sc, controller=MPC(preview="perfect", horizon=10)).pto_torque.values
         np.testing.assert_array_equal(again, fresh)
+
+
+def _causal_run(device: str, method: str, sea: dict, hydro: str | None = None) -> float:
+    """Mean absorbed power [W] of causal MPC at force penalty 0.01 (horizon 30, T = Tp/20, dt = Tp/200)."""
+    period = sea["period"]
+    sc = Scene.from_dict(
+        {
+            "device": {"name": device, **({"hydro": hydro} if hydro else {})},
+            "sea": {"kind": "jonswap", "gamma": 3.3, "seed": 1, "ramp": 5 * period, **sea},
+            "controller": {"name": "mpc", "dt": period / 20},
+            "solver": {"method": method, "dt": period / 200},
+            "radiation": {"method": "state_space"},
+            "outputs": {"variables": ["pto"]},
+        }
+    )
+    return float(simulate(sc, controller=MPC(preview="causal", force_penalty=0.01)).mean_pto_power.sum())
+
+
+def test_causal_mpc_at_a_low_force_penalty_runs_on_in_the_nonlinear_simulator():
+    """m4-111, JONSWAP Hs 0.04 m, Tp 1.2 s, force penalty 0.01: with the predictor fitted without a ridge the
+    nonlinear run diverged within 2 s of the ramp's end (a hinge past 1.5 rad); now 10 s complete and absorb power."""
+    assert _causal_run("m4-111", "beeman", {"height": 0.04, "period": 1.2, "duration": 10.0}) > 0.1
+
+
+@pytest.mark.slow
+def test_causal_mpc_at_a_low_force_penalty_is_stable_in_the_nonlinear_simulator():
+    """m4-111, JONSWAP Hs 0.04 m, Tp 1.2 s, 24 s, force penalty 0.01: causal MPC diverged in the nonlinear simulator
+    within 2 s when its AR predictor was fitted without a ridge (it amplified the estimate's error, the linear-
+    nonlinear mismatch among it: ``test_a_ridge_keeps_the_predictor_from_amplifying_the_estimates_error``); now the
+    run completes and absorbs within 5 % of the linear simulator's power (measured 428.7 against 445.3 mW, -3.7 %;
+    perfect preview -0.7 %; at Hs 0.02 m -0.4 %)."""
+    sea = {"height": 0.04, "period": 1.2, "duration": 24.0}
+    power = {method: _causal_run("m4-111", method, sea) for method in ("linear", "beeman")}
+    assert power["linear"] > 0.3
+    assert power["beeman"] == pytest.approx(power["linear"], rel=0.05), power
+
+
+WAMIT = Path(__file__).resolve().parents[3] / "shared" / "data" / "wamit"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("device", "sea", "hydro", "gap"),
+    [
+        ("m4-132", {"height": 0.04, "period": 1.2}, None, 0.01),
+        ("m4-134", {"height": 0.04, "period": 1.2}, None, 0.01),
+        ("wavestar", {"height": 0.0625, "period": 1.412}, "wavestar/wavestar.out", 0.05),
+        ("rm3", {"height": 2.0, "period": 8.0}, "rm3/rm3.out", 0.05),
+    ],
+)
+def test_causal_mpc_at_a_low_force_penalty_is_stable_on_the_catalogue(device, sea, hydro, gap):
+    """Causal MPC at force penalty 0.01 over 20 peak periods in the nonlinear simulator against the linear one
+    (measured gaps: m4-132 +0.01 %, m4-134 -0.3 %, rm3 +0.7 %, the Wavestar in WECCCOMP sea state 5 -4.4 %: short of
+    the 1 % sought, 27 % without the estimator's stroke offset). notc-10kw is left out: there even perfect-preview
+    MPC takes its arm past 1.5 rad in the nonlinear simulator (no stroke limit in its spec)."""
+    if hydro is not None and not (WAMIT / hydro).exists():
+        pytest.skip(f"no {WAMIT / hydro}")
+    sea = {**sea, "duration": 20 * sea["period"]}
+    path = None if hydro is None else str(WAMIT / hydro)
+    power = {method: _causal_run(device, method, sea, path) for method in ("linear", "beeman")}
+    assert power["linear"] > 0
+    assert power["beeman"] == pytest.approx(power["linear"], rel=gap), power

@@ -4,6 +4,7 @@ quadratic programme built once (:class:`PowerQP`) and its solvers (OSQP directly
 
 from ._estimation import ExcitationEstimator as ExcitationEstimator
 from ._estimation import measured_rms as measured_rms
+from ._estimation import pto_equivalent as pto_equivalent
 from ._estimation import pto_referred as pto_referred
 from ._horizon import HorizonModel as HorizonModel
 from ._observer import StateObserver as StateObserver
@@ -13,3 +14,4 @@ from ._qp_solvers import ClarabelPath as ClarabelPath
 from ._qp_solvers import CvxpyPath as CvxpyPath
 from ._qp_solvers import OsqpPath as OsqpPath
 from ._qp_solvers import Solution as Solution
+from ._wave_estimation import WaveExcitationEstimator as WaveExcitationEstimator

@@ -51,6 +51,8 @@ class ARPredictor:
             lagged = np.stack([x[self.order - i - 1 : n - i - 1, j] for i in range(self.order)], axis=1)
             target = x[self.order :, j]
             gram = lagged.T @ lagged
+            if np.trace(gram) == 0:  # a component that is zero throughout: predicted zero
+                continue
             gram += self.ridge * np.trace(gram) / self.order * np.eye(self.order)
             coefficients[:, j] = np.linalg.solve(gram, lagged.T @ target)
         self.coefficients = coefficients
