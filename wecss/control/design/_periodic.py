@@ -7,11 +7,12 @@ irregular waves: ``sea.d_omega`` = omega_0). A PTO force that repeats with the r
 
     f(t) = Re sum_{m=L}^{M} F_m exp(i m omega_0 t),
 
-from the waves' lowest harmonic L (by default) to M. No constant part: a constant force does no work over a period.
-No harmonics below the waves': they would cost almost no power (the PTO admittance's real part falls as omega^2
-towards zero frequency: 9e-9 at the first harmonic of WECCCOMP's sea state 6 against 9e-3 at its peak), leaving the
-programme flat along them and its dual singular, and a slow force could at most recentre the strokes within their
-limits. The linear device answers the force harmonic by
+from the waves' lowest harmonic L (by default) or from the first (``lowest = 1``) to M. No constant part: a constant
+force does no work over a period. The harmonics below the waves' cost almost no power (the PTO admittance's real part
+falls as omega^2 towards zero frequency: 9e-9 at the first harmonic of WECCCOMP's sea state 6 against 9e-3 at its
+peak), but where a force limit binds they shape the saturated force (its wave groups' envelope), and the non-causal
+optimum takes them (``noncausal_optimum``: +3.7 % in that sea state's optimum within 60 N). The linear device answers
+the force harmonic by
 harmonic: the PTO stroke rates are v_m = v_e,m + Y_m F_m (``wecss.control.design.pto_response``: v_e the rates the
 waves drive with no PTO force, Y the PTO admittance), the strokes x_m = v_m / (i m omega_0) about their equilibrium
 values. Sampled at N >= 2 M + 1 points of the period (``points``), such a series is given exactly by its samples (a
