@@ -121,7 +121,7 @@ def test_agrees_with_an_independent_direct_qp(limits):
     assert opt.value == pytest.approx(reference, rel=1e-6)
     assert opt.value < free.value
     # from the waves' lowest harmonic (the optimum's old default) the same on both sides, and no better
-    narrow = noncausal_optimum(model, omega, amplitude, PERIOD, lowest=None, **kw)
+    narrow = noncausal_optimum(model, omega, amplitude, PERIOD, lowest=int(HARMONICS[0]), **kw)
     narrow_reference = _direct_qp(omega, amplitude, top, opt.periodic.points, lowest=HARMONICS[0], **kw)
     assert narrow.value == pytest.approx(narrow_reference, rel=1e-6)
     assert narrow.value <= opt.value * (1 + 1e-9)
@@ -389,3 +389,27 @@ def test_a_limit_on_one_pto_of_two_leaves_the_other_free():
 
     electrical, value, _, _ = _electrical(two, hermitian, -0.5 * two.free_rate, _signals(two, limits), both, 0.7)
     assert np.isfinite(value) and value > 0 and np.all(np.isfinite(electrical.force))
+
+
+def test_a_basis_from_the_first_harmonic_that_does_not_settle_falls_back_to_the_waves_lowest_and_says_so(monkeypatch):
+    """The default basis starts at the record's first harmonic; where that programme does not settle (m4-134 at Tp
+    0.9 s with its stroke limits: the active set cycled and the interior-point fallback was too large) the optimum
+    is taken from the waves' lowest harmonic, and its method and settings say so. A lowest given is kept."""
+    import wecss.control.design._optimum as optimum
+
+    model, omega, amplitude = _record()
+    real = optimum._optimum
+
+    def first_fails(*args, lowest, **kwargs):
+        if lowest == 1:
+            raise RuntimeError("the active-set iteration did not settle")
+        return real(*args, lowest=lowest, **kwargs)
+
+    monkeypatch.setattr(optimum, "_optimum", first_fails)
+    fallback = noncausal_optimum(model, omega, amplitude, PERIOD, force_limit=500.0)
+    assert fallback.settings["lowest"] == HARMONICS[0]
+    assert (
+        "from the waves' lowest harmonic (from the first: the active-set iteration did not settle)" in fallback.method
+    )
+    with pytest.raises(RuntimeError, match="did not settle"):
+        noncausal_optimum(model, omega, amplitude, PERIOD, force_limit=500.0, lowest=1)

@@ -259,7 +259,7 @@ def noncausal_optimum(
     copper_loss: np.ndarray | float | None = None,
     harmonics: int | None = None,
     basis: float = 2.0,
-    lowest: int | None = 1,
+    lowest: int | None = None,
     points: int | None = None,
     response: str = "database",
 ) -> NonCausalOptimum:
@@ -282,8 +282,9 @@ def noncausal_optimum(
     efficiency : float or None
         eta: needed for "electrical"; with the other objectives the electrical power of their optimum is reported.
     harmonics, basis, lowest, points, response
-        The force basis (its highest harmonic M, or ``basis`` times the waves' highest; its lowest, by default the
-        record's first: None for the waves' lowest), the samples N and the frequency response ("database" or
+        The force basis (its highest harmonic M, or ``basis`` times the waves' highest; its lowest: by default
+        (None) the record's first, or the waves' lowest where the programme from the first does not settle, which
+        ``method`` and ``settings["lowest"]`` then say), the samples N and the frequency response ("database" or
         "fit"): see ``periodic_response``. Where the force limit binds, the best force is a saturated one, and its
         harmonics below the waves' matter: on the Wavestar's WECCCOMP records (60 N / 0.08 m) the optimum from the
         waves' lowest harmonic was 1.304967 W in SS3 and 1.320950 W in SS6 and is 1.353284 and 1.363517 W from the
@@ -304,6 +305,47 @@ def noncausal_optimum(
         If neither the active-set iteration nor the interior-point solve (for a programme small enough to hold
         densely) finds the optimum.
     """
+
+    def solve(low: int | None) -> NonCausalOptimum:
+        return _optimum(
+            model, omega, coefficients, period, force_limit=force_limit, stroke_limit=stroke_limit,
+            rate_limit=rate_limit, objective=objective, efficiency=efficiency, copper_loss=copper_loss,
+            harmonics=harmonics, basis=basis, lowest=low, points=points, response=response,
+        )  # fmt: skip
+
+    if lowest is not None:
+        return solve(lowest)
+    start = _time.perf_counter()
+    try:
+        return solve(1)
+    except RuntimeError as err:
+        narrow = solve(None)
+        return dataclasses.replace(
+            narrow,
+            method=f"{narrow.method}; from the waves' lowest harmonic (from the first: {err})",
+            seconds=_time.perf_counter() - start,
+        )
+
+
+def _optimum(
+    model: LinearModel,
+    omega: np.ndarray,
+    coefficients: np.ndarray,
+    period: float,
+    *,
+    force_limit: np.ndarray | float | None,
+    stroke_limit: np.ndarray | float | None,
+    rate_limit: np.ndarray | float | None,
+    objective: str,
+    efficiency: float | None,
+    copper_loss: np.ndarray | float | None,
+    harmonics: int | None,
+    basis: float,
+    lowest: int | None,
+    points: int | None,
+    response: str,
+) -> NonCausalOptimum:
+    """:func:`noncausal_optimum` on one force basis (``lowest`` None: from the waves' lowest harmonic)."""
     start = _time.perf_counter()
     if objective not in OBJECTIVES:
         raise ValueError(f"objective must be one of {OBJECTIVES}; got {objective!r}")
@@ -368,6 +410,7 @@ def noncausal_optimum(
             **{k: v.tolist() for k, v in limits.items()}, "efficiency": efficiency, "copper_loss": loss.tolist(),
             "basis": float(periodic.harmonic[-1] / periodic.wave_harmonics.max()),
             "floored_harmonics": floored, "electrical_at_samples": at_samples,
+            "lowest": int(periodic.harmonic[0]),
         },
     )  # fmt: skip
 
