@@ -89,9 +89,9 @@ class MPC(Controller):
         control period and W / eta when it supplies it, per PTO and period (``wecss.control.mpc.PowerQP``). The
         supplied energy is bilinear in the forces, so it is linearised about the last plan shifted by one period
         (sequential convex programming, one convex programme per period; the loss is exact at the plan and its
-        error second order in the plan's change). With perfect preview on the Wavestar (WECCCOMP SS1-5, a 60 s
-        periodic record, linear simulator) the run converts 0.99-1.02 of the non-causal electrical optimum's
-        electrical power (docs/control.md).
+        error second order in the plan's change). On the Wavestar's WECCCOMP records (docs/control.md) the
+        electrical power it converts is above the non-causal electrical optimum's (a local optimum) with perfect
+        preview and near it causal.
     rate_limit : float, sequence of float or None
         Largest force rate per PTO [N/s or N m/s] (default None: none).
     stroke_weights : (float, float)
