@@ -71,27 +71,39 @@ def sea_states() -> dict[int, dict[str, float]]:
         return {int(r["id"]): {k: float(v) for k, v in r.items() if k != "id"} for r in rows}
 
 
-def wecccomp_scene(state: int, controller: dict, duration: float | None = None) -> Scene:
+def wecccomp_scene(
+    state: int,
+    controller: dict,
+    duration: float | None = None,
+    *,
+    repeat: float | None = None,
+    method: str | None = None,
+) -> Scene:
     """The Wavestar in sea state ``state`` (its ramp and end time unless ``duration`` [s] is given), dt = Tp/200,
-    state-space radiation, with ``controller`` (a planning one at ten solver steps)."""
+    state-space radiation, with ``controller`` (a planning one at ten solver steps); the record repeats every
+    ``repeat`` [s] (default: the duration) and ``method`` names the solver (default: the default one)."""
     row = sea_states()[state]
     dt = row["tp_s"] / 200
     control = dict(controller)
     if control["name"] == "mpc":
         control["dt"] = 10 * dt
+    sea = {
+        "kind": "jonswap", "height": row["hm0_m"], "period": row["tp_s"], "gamma": row["gamma"],
+        "duration": duration or row["end_s"], "ramp": row["ramp_s"],
+    }  # fmt: skip
+    if repeat is not None:
+        sea["d_omega"] = 2 * np.pi / repeat
+    solver: dict = {"dt": dt} if method is None else {"dt": dt, "method": method}
     return Scene.from_dict(
         {
             "device": {"name": "wavestar", "hydro": str(WAVESTAR)},
-            "sea": {
-                "kind": "jonswap", "height": row["hm0_m"], "period": row["tp_s"], "gamma": row["gamma"],
-                "duration": duration or row["end_s"], "ramp": row["ramp_s"],
-            },
-            "solver": {"dt": dt},
+            "sea": sea,
+            "solver": solver,
             "radiation": {"method": "state_space"},
             "controller": control,
             "outputs": {"variables": ["pto"]},
         }
-    )  # fmt: skip
+    )
 
 
 EFFICIENCY = 0.7
@@ -107,26 +119,8 @@ SAME_RECORD: dict[str, dict] = {
 
 
 def record_scene(state: int, controller: dict, record: float, method: str) -> Scene:
-    """Sea state ``state`` as a periodic record of ``record`` [s] played twice, the competition's ramp, dt = Tp/200,
-    ``method`` the solver, ``controller`` a scene controller section."""
-    row = sea_states()[state]
-    dt = row["tp_s"] / 200
-    control = dict(controller)
-    if control["name"] == "mpc":
-        control["dt"] = 10 * dt
-    return Scene.from_dict(
-        {
-            "device": {"name": "wavestar", "hydro": str(WAVESTAR)},
-            "sea": {
-                "kind": "jonswap", "height": row["hm0_m"], "period": row["tp_s"], "gamma": row["gamma"],
-                "duration": 2 * record, "ramp": row["ramp_s"], "d_omega": 2 * np.pi / record,
-            },
-            "solver": {"dt": dt, "method": method},
-            "radiation": {"method": "state_space"},
-            "controller": control,
-            "outputs": {"variables": ["pto"]},
-        }
-    )  # fmt: skip
+    """Sea state ``state`` as a periodic record of ``record`` [s] played twice, ``method`` the solver."""
+    return wecccomp_scene(state, controller, 2 * record, repeat=record, method=method)
 
 
 def same_record(state: int, record: float, methods: tuple[str, ...], quick: bool = False) -> list[str]:
