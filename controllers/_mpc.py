@@ -177,6 +177,11 @@ class MPC(Controller):
             raise ValueError(f"solver must be one of {SOLVERS} or None; got {solver!r}")
         if not (isinstance(sequential_solves, int) and sequential_solves >= 1):
             raise ValueError(f"sequential_solves must be an integer >= 1; got {sequential_solves!r}")
+        if sequential_solves != 1 and efficiency is None:
+            raise ValueError(
+                f"sequential_solves ({sequential_solves}) applies to the electrical objective only: give an efficiency "
+                "too, or leave sequential_solves out"
+            )
         if not (isinstance(ar_order, int) and ar_order >= 1):
             raise ValueError(f"ar_order must be an integer >= 1; got {ar_order!r}")
         if not (isinstance(radiation_error, int | float) and 0 <= radiation_error < 1):

@@ -170,6 +170,8 @@ def test_bad_parameters_are_refused_with_what_is_accepted():
         ({"preview": "oracle"}, "preview must be one of"),
         ({"efficiency": 1.5}, r"efficiency must lie in \(0, 1\]"),
         ({"solver": "gurobi"}, "solver must be one of"),
+        ({"sequential_solves": 0, "efficiency": 0.7}, "sequential_solves must be an integer >= 1"),
+        ({"sequential_solves": 2}, "applies to the electrical objective only"),
         ({"rate_limit": -1.0}, "rate_limit must be positive"),
         ({"radiation_error": 1.0}, r"radiation_error must lie in \[0, 1\)"),
     ):
