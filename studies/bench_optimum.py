@@ -90,8 +90,9 @@ def main() -> None:
         "",
         f"`python studies/bench_optimum.py` on {platform.machine()}, Python {platform.python_version()}, BLAS threads "
         f"pinned to 1, {datetime.date.today().isoformat()}; the WECCCOMP Wavestar, 60 N / 0.08 m, the linear "
-        f"model over each sea state's periodic record (force basis twice the waves' harmonics), efficiency "
-        f"{EFFICIENCY} for the electrical objective. Medians of {args.repeats} calls after a warm-up (min-max "
+        f"model over each sea state's periodic record (force basis from the record's first harmonic to twice the "
+        f"waves' highest), efficiency {EFFICIENCY} for the electrical objective (its value evaluated 16 times finer "
+        "than the samples). Medians of {args.repeats} calls after a warm-up (min-max "
         "beside).",
         "",
         "| sea state | objective | optimum [W] | bound [W] | harmonics | method | time [s] (min-max) |",
