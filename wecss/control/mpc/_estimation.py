@@ -27,10 +27,10 @@ import numpy as np
 
 from ...linear import LinearModel
 from ._kalman import LEAK as LEAK
-from ._kalman import pto_measure, steady_kalman
+from ._kalman import RunningFilter, pto_measure, steady_kalman
 
 
-class ExcitationEstimator:
+class ExcitationEstimator(RunningFilter):
     """Kalman filter of the plant state and the generalised excitation force (module docstring).
 
     Parameters
@@ -142,11 +142,8 @@ class ExcitationEstimator:
         after = np.diag(out_osc @ kalman.corrected[n:, n:] @ out_osc.T)
         self.observed = np.where(prior > 0, 1.0 - after / np.where(prior > 0, prior, 1.0), 0.0)
         """Share of each component's predicted variance one update resolves [-] (0: the PTOs do not see it)."""
-        self.gain, phi, gamma, measure = kalman.gain, kalman.phi, kalman.gamma, kalman.measure
-        self.phi, self.gamma, self.measure, self.output = phi, gamma, measure, out_osc
-        self.n_plant, self.stroke0 = n, model.pto_stroke.copy()
-        self.x = np.zeros(n + m)
-        self._force = np.zeros(n_pto)
+        self.output = out_osc
+        self._start(kalman, model)
 
     @classmethod
     def for_sea(
@@ -201,37 +198,20 @@ class ExcitationEstimator:
             bias_time=4 * 2 * np.pi / float(np.min(frequencies)),
         )
 
-    def reset(self) -> None:
-        """Start again from rest (no excitation known)."""
-        self.x[:] = 0.0
-        self._force[:] = 0.0
-
     def update(self, stroke: np.ndarray, rate: np.ndarray, force: np.ndarray | None) -> np.ndarray:
         """One control period: predict over it with the PTO force held since the last update, then correct with
         the measured PTO strokes (from their rest positions) and rates; returns the estimated excitation
         components (n_d,) now [N or N m]. ``force`` [N or N m] is the force applied from now on (None: give it
         with :meth:`hold` once known)."""
-        predicted = self.phi @ self.x + self.gamma @ self._force
-        measured = np.concatenate([np.asarray(stroke, dtype=float) - self.stroke0, np.asarray(rate, dtype=float)])
-        self.x = predicted + self.gain @ (measured - self.measure @ predicted)
+        self._correct(stroke, rate)
         if force is not None:
             self.hold(force)
         return self.excitation
-
-    def hold(self, force: np.ndarray) -> None:
-        """The PTO force [N or N m] applied from now until the next :meth:`update` (for a controller that
-        computes its force from this update's estimate)."""
-        self._force = np.asarray(force, dtype=float).copy()
 
     @property
     def excitation(self) -> np.ndarray:
         """The estimated excitation components (n_d,) [N or N m]: referred to the PTOs by default."""
         return self.output @ self.x[self.n_plant :]
-
-    @property
-    def state(self) -> np.ndarray:
-        """The estimated plant state (the linear model's x: xi, xi_dot, radiation states)."""
-        return self.x[: self.n_plant].copy()
 
 
 def pto_referred(model: LinearModel, generalised: np.ndarray) -> np.ndarray:

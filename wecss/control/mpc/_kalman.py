@@ -48,6 +48,52 @@ class SteadyKalman:
     corrected: np.ndarray
 
 
+class RunningFilter:
+    """A steady-state Kalman filter at run time, shared by the excitation estimators: the augmented state z (plant
+    state, then oscillator states), one predict-and-correct step per control period with the PTO force held since
+    the last one, and the plant state's estimate. A subclass calls :meth:`_start` once its :class:`SteadyKalman` is
+    built."""
+
+    phi: np.ndarray
+    gamma: np.ndarray
+    measure: np.ndarray
+    gain: np.ndarray
+    n_plant: int
+    stroke0: np.ndarray
+    x: np.ndarray
+    _force: np.ndarray
+
+    def _start(self, kalman: SteadyKalman, model: LinearModel) -> None:
+        """Keep ``kalman``'s step and gain, the PTO strokes at rest, and start from rest."""
+        self.phi, self.gamma, self.measure, self.gain = kalman.phi, kalman.gamma, kalman.measure, kalman.gain
+        self.n_plant, self.stroke0 = model.n_states, model.pto_stroke.copy()
+        self.x = np.zeros(kalman.phi.shape[0])
+        self._force = np.zeros(kalman.gamma.shape[1])
+
+    def _correct(self, stroke: np.ndarray, rate: np.ndarray, *more: np.ndarray) -> None:
+        """Predict over the period with the held force, then correct with the measured PTO strokes (from their rest
+        positions), rates and any ``more`` measured signals, in the order of ``measure``'s rows."""
+        predicted = self.phi @ self.x + self.gamma @ self._force
+        parts = [np.asarray(stroke, dtype=float) - self.stroke0, np.asarray(rate, dtype=float)]
+        measured = np.concatenate([*parts, *(np.asarray(m, dtype=float) for m in more)])
+        self.x = predicted + self.gain @ (measured - self.measure @ predicted)
+
+    def reset(self) -> None:
+        """Start again from rest (no excitation known)."""
+        self.x[:] = 0.0
+        self._force[:] = 0.0
+
+    def hold(self, force: np.ndarray) -> None:
+        """The PTO force [N or N m] applied from now until the next update (for a controller that computes its
+        force from this update's estimate)."""
+        self._force = np.asarray(force, dtype=float).copy()
+
+    @property
+    def state(self) -> np.ndarray:
+        """The estimated plant state (the linear model's x: xi, xi_dot, radiation states)."""
+        return self.x[: self.n_plant].copy()
+
+
 def steady_kalman(
     model: LinearModel,
     dt: float,

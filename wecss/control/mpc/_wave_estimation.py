@@ -26,10 +26,10 @@ import numpy as np
 
 from ...linear import LinearModel
 from ._estimation import measured_rms, pto_referred
-from ._kalman import pto_measure, steady_kalman
+from ._kalman import RunningFilter, pto_measure, steady_kalman
 
 
-class WaveExcitationEstimator:
+class WaveExcitationEstimator(RunningFilter):
     """Kalman filter of the plant state and the generalised excitation (nv,) as the output of one scalar process
     per band (module docstring).
 
@@ -128,12 +128,9 @@ class WaveExcitationEstimator:
         self.resolved_referred = 1.0 - after / np.where(prior > 0, prior, 1.0)
         """The same share for the excitation referred to the PTOs (n_pto,) [-]."""
         self.measures_velocity = velocity_std is not None
-        self.phi, self.gamma, self.measure, self.gain = kalman.phi, kalman.gamma, kalman.measure, kalman.gain
         self.forcing = forcing
         self.model = model
-        self.n_plant, self.stroke0 = n, model.pto_stroke.copy()
-        self.x = np.zeros(n + m)
-        self._force = np.zeros(n_pto)
+        self._start(kalman, model)
 
     @classmethod
     def for_sea(
@@ -202,11 +199,6 @@ class WaveExcitationEstimator:
             damping_ratio=damping_ratio, velocity_std=velocity_std,
         )  # fmt: skip
 
-    def reset(self) -> None:
-        """Start again from rest (no excitation known)."""
-        self.x[:] = 0.0
-        self._force[:] = 0.0
-
     def update(
         self, stroke: np.ndarray, rate: np.ndarray, force: np.ndarray | None, velocity: np.ndarray | None = None
     ) -> np.ndarray:
@@ -226,17 +218,10 @@ class WaveExcitationEstimator:
                 if self.measures_velocity
                 else "this estimator measures the PTOs only: velocity must be None"
             )
-        predicted = self.phi @ self.x + self.gamma @ self._force
-        parts = [np.asarray(stroke, dtype=float) - self.stroke0, np.asarray(rate, dtype=float)]
-        measured = np.concatenate(parts if velocity is None else [*parts, np.asarray(velocity, dtype=float)])
-        self.x = predicted + self.gain @ (measured - self.measure @ predicted)
+        self._correct(stroke, rate, *(() if velocity is None else (velocity,)))
         if force is not None:
             self.hold(force)
         return self.excitation
-
-    def hold(self, force: np.ndarray) -> None:
-        """The PTO force [N or N m] applied from now until the next :meth:`update`."""
-        self._force = np.asarray(force, dtype=float).copy()
 
     @property
     def excitation(self) -> np.ndarray:
@@ -247,8 +232,3 @@ class WaveExcitationEstimator:
     def referred(self) -> np.ndarray:
         """The estimated excitation referred to the PTOs (n_pto,) [N or N m] (:func:`pto_referred`)."""
         return pto_referred(self.model, self.excitation)
-
-    @property
-    def state(self) -> np.ndarray:
-        """The estimated plant state (the linear model's x: xi, xi_dot, radiation states)."""
-        return self.x[: self.n_plant].copy()
