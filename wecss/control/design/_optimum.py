@@ -7,24 +7,32 @@ unconstrained complex-conjugate bound; its trajectory is a design target.
 
 Formulation (pseudo-spectral): the force is a Fourier series on the record's harmonics 1 ... M (``_periodic``; M a
 ``basis`` multiple of the waves' highest harmonic, wider than the waves' own so that a saturated force can take its
-shape), the limits hold at the N > 2 M sample points of the period, and the mean mechanical power is exact
-(Parseval). Mechanical power and copper loss make a convex quadratic programme (``_spectral_qp``), solved exactly by
-a dual active-set method started from the active set ADMM finds (``_admm``), with a certificate: the dual value
-bounds the optimum from above, the primal value from below, and their gap is reported. The electrical objective
-of the asymmetric efficiency is not convex: it is
+shape), the limits hold at the N > 2 M sample points of the period, and the mean mechanical power is exact (Parseval).
+The electrical objective's instantaneous power f v has harmonics up to 2 M, which N > 2 M samples hold only in the
+mean: there the procedure below finds trajectories whose power is positive at the samples and negative between them,
+so its value is reported between them (ELECTRICAL_OVERSAMPLING), and ``points`` > 4 M makes the programme see it (the
+Wavestar's SS1: 0.0201 W at the samples and 0.0185 W between them at the default N; 0.02002 and 0.01999 W at N > 4 M,
+where perfect-preview MPC converted 0.0199 W, but in 35 s against 2.4 s on a shared machine; in SS5 the limits' active
+set at N > 4 M took minutes). Mechanical power and copper loss make a convex quadratic programme (``_spectral_qp``),
+solved exactly by a dual active-set method started from the active set ADMM finds (``_admm``), with a certificate: the
+dual value bounds the optimum from above, the primal value from below, and their gap is reported. The electrical
+objective of the asymmetric efficiency is not convex: it is
 P_elec = eta P - (1 / eta - eta) max(-P, 0), and max(f v, 0) <= (alpha f + v / alpha)^2 / 4 for any alpha > 0,
 with equality at a point (f_0, v_0) for alpha^2 = |v_0 / f_0|. A stationary point of the whole objective is found
 first by nonconvex ADMM (``_electrical_admm``: the exact proximal step of max(f v, 0) per sample), and taken as the
 start where it keeps the limits (to GUESS_VIOLATION) and beats the mechanical optimum; then each step of a
-convex-concave procedure solves
-the convex programme with that majorant at the samples where the present trajectory supplies power (where the new
-one supplies power elsewhere and the step did not gain, with the majorant there too, solved again: then it cannot
-lose), by ADMM (``_admm``: the penalty rows cost nothing per iteration, where the exact solve factors a dense matrix
-of them all), each programme to a tenth of the last step's relative gain (from ADMM_LOOSE down to ADMM_TIGHT),
-certified by its duality gap; a step that loses is refused. It stops when a step gains less than CCP_TOLERANCE
-(a local optimum), evaluated at the samples, or after CCP_ITERATIONS steps: the procedure's gains shrink slowly
-(alone from the mechanical optimum, SS5 of the Wavestar gained 2.8e-6 W per step after 60 steps, in 80 s; from
-ADMM's start 4 steps, 8 s). eta times the mechanical optimum bounds it from above (P_elec <= eta P pointwise).
+convex-concave procedure solves the convex programme with that majorant at the samples where the present trajectory
+supplies power and where the last step had it (where the new one supplies power elsewhere and the step did not gain,
+with the majorant there too, solved again: then it cannot lose; the majorant is tight at a sample that absorbs, 0
+there, so keeping the last step's samples loses nothing and saves most of the solves again: on SS1 8 solves and
+61,000 ADMM iterations in all, against 19 and 150,000, the same optimum), by ADMM (``_admm``: the penalty rows cost
+nothing per iteration, where the exact solve factors a dense matrix of them all), each programme to a tenth of the
+last step's relative gain (from ADMM_LOOSE down to ADMM_TIGHT), certified by its duality gap; a step that loses is
+refused and solved again 100 times tighter. It stops when a step gains less than CCP_TOLERANCE (a local optimum),
+evaluated at the samples, when a refused step solved tighter ends where it did (to CCP_TOLERANCE: stationary), or
+after CCP_ITERATIONS steps: the procedure's gains shrink slowly (alone from the mechanical optimum, SS5 of the
+Wavestar gained 2.8e-6 W per step after 60 steps, in 80 s; from ADMM's start 4 steps, 8 s). eta times the mechanical
+optimum bounds it from above (P_elec <= eta P pointwise).
 """
 
 from __future__ import annotations
@@ -58,6 +66,11 @@ CCP_ITERATIONS: int = 60
 GUESS_VIOLATION: float = 1e-4
 """The largest limit violation (a share of the limit) at which the nonconvex ADMM's force is taken as the point the
 procedure's first majorant is made at (kept as a result only within FEASIBILITY of the limits)."""
+
+ELECTRICAL_ADMM_ITERATIONS: int = 5000
+"""Most iterations of the nonconvex ADMM that finds the procedure's start. At N > 4 M it often does not settle: on
+the test record of ``tests/control/test_optimum.py`` (15 procedure steps) 20,000 iterations took 18 s and gave
+893.8 W, 5,000 took 2.4 s and gave 895.7 W, 2,000 876.9 W."""
 
 ADMM_LOOSE: float = 1e-4
 ADMM_TIGHT: float = 1e-8
@@ -285,7 +298,9 @@ def noncausal_optimum(
         The force basis (its highest harmonic M, or ``basis`` times the waves' highest; its lowest: by default
         (None) the record's first, or the waves' lowest where the programme from the first does not settle, which
         ``method`` and ``settings["lowest"]`` then say), the samples N and the frequency response ("database" or
-        "fit"): see ``periodic_response``. Where the force limit binds, the best force is a saturated one, and its
+        "fit"): see ``periodic_response``. For the electrical objective, ``points`` above 4 M (twice the default)
+        makes the programme see the power between the samples too (module docstring), at several times the cost.
+        Where the force limit binds, the best force is a saturated one, and its
         harmonics below the waves' matter: on the Wavestar's WECCCOMP records (60 N / 0.08 m) the optimum from the
         waves' lowest harmonic was 1.304967 W in SS3 and 1.320950 W in SS6 and is 1.353284 and 1.363517 W from the
         first (SS2 and SS5 +0.1 %, SS1 and SS4 unchanged), and perfect-preview MPC, whose held force has them,
@@ -503,7 +518,9 @@ def _electrical(
     weight = supply / (2.0 * n)  # w e^2 / 2 = supply e^2 / (4 N)
     # a stationary point of the whole electrical objective by nonconvex ADMM, kept where it beats the mechanical optimum
     plain = SpectralProgramme(periodic, efficiency * hermitian, efficiency * linear, signals)
-    force, admm_iterations = electrical_admm(plain, supply / n, tolerance=1e-5)
+    force, admm_iterations = electrical_admm(
+        plain, supply / n, tolerance=1e-5, max_iterations=ELECTRICAL_ADMM_ITERATIONS
+    )
     values = plain.values(force)
     primal, e = plain.objective(force, values)
     violation = float(max(0.0, -float(np.min(plain._slacks(values), initial=0.0))))
@@ -528,10 +545,14 @@ def _electrical(
     typical = rate_rms / force_rms  # |v / f| scale per PTO
     ccp = 0
     tolerance = ADMM_LOOSE  # each programme is solved to a tenth of the last step's gain, down to ADMM_TIGHT
+    refused = None  # the value of the last step refused, solved to a looser tolerance
+    carried = None  # the samples the last step's majorant was at
     for ccp in range(1, CCP_ITERATIONS + 1):  # noqa: B007 (the count is returned)
         f, v = point.values[0], point.values[2]
         alpha = np.sqrt(np.clip(np.abs(v) / np.maximum(np.abs(f), 1e-300), 1e-4 * typical, 1e4 * typical))
         rows = (f * v > 0) | (np.abs(f * v) <= 1e-9 * float(np.mean(np.abs(f * v))))  # supplying (or at zero)
+        if carried is not None:  # and where an earlier step needed it
+            rows |= carried
         while True:
             j, p = np.nonzero(rows)
             penalties = Penalties(
@@ -548,12 +569,17 @@ def _electrical(
                 break
             rows |= new  # add the majorant there and solve again: then the procedure cannot lose
 
+        carried = rows
         improved = trial_value - value
         if not improved > 0:  # lost (the programme solved too loosely), stationary or NaN: tighter, or done
-            if tolerance <= ADMM_TIGHT:
-                break
+            if tolerance <= ADMM_TIGHT or (
+                refused is not None and abs(trial_value - refused) <= CCP_TOLERANCE * max(abs(value), 1e-300)
+            ):
+                break  # solved tighter, the step ends where it did: the procedure is stationary at the point
+            refused = trial_value
             tolerance = max(0.01 * tolerance, ADMM_TIGHT)
             continue
+        refused = None
         solution, value = trial, trial_value
         point = trial
         if improved <= CCP_TOLERANCE * max(abs(value), 1e-300) and tolerance <= 0.1 * CCP_TOLERANCE:
