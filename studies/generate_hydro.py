@@ -27,7 +27,7 @@ from wecss.hydro import DATA_DIR, HydroData
 from wecss.hydro.bem import BEMSpec, read_geometry, run_bem
 from wecss.netcdf import write_netcdf
 
-QUICK_PANEL_FACTOR = 3.0
+QUICK_PANEL_FACTOR = 4.0
 """--quick: panels this many times taller (the mesh keeps at least 24 sectors per float)."""
 
 QUICK_FREQUENCIES = 8
