@@ -1,7 +1,7 @@
 """Run every study with ``--quick`` (what ``make studies-quick`` and CI do): each ``studies/[a-z]*.py`` (the
 ``_``-prefixed modules are helpers), in name order, each in its own process, stopping at the first that fails.
-With ``--jobs N`` up to N run at once: each one's output is printed whole when it ends, in name order, and after a
-failure no further study starts (those already running end first).
+With ``--jobs N`` up to N run at once, the next starting as soon as one ends: each one's output is printed whole, in
+name order, and after a failure no further study starts (those already running end first).
 
     python studies/_quick.py                    # every study, one at a time
     python studies/_quick.py --jobs 2           # two at a time (what CI does on its two cores)
@@ -15,7 +15,7 @@ import subprocess
 import sys
 import time
 from collections import deque
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from pathlib import Path
 
 STUDIES = Path(__file__).resolve().parent
@@ -50,31 +50,40 @@ def main(argv: list[str] | None = None) -> int:
     capture = args.jobs > 1
     begin = time.perf_counter()
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        window: deque[tuple[Path, Future[tuple[int, float, str]]]] = deque()
+        # a study starts, in name order, as soon as a place is free; each output is printed once that study and all
+        # before it have ended; after a failure none starts (those running end first: the pool waits for them)
+        running: dict[Future[tuple[int, float, str]], int] = {}
+        ended: dict[int, tuple[int, float, str]] = {}
+        waiting = deque(range(len(chosen)))
+        printed = 0  # chosen[:printed] are printed
+        failed = False
 
-        def start(path: Path) -> None:
+        def start() -> None:
+            index = waiting.popleft()
             if not capture:  # its output follows at once
-                print(f"== {path.relative_to(STUDIES.parent)} --quick", flush=True)
-            window.append((path, pool.submit(run_one, path, capture)))
+                print(f"== {chosen[index].relative_to(STUDIES.parent)} --quick", flush=True)
+            running[pool.submit(run_one, chosen[index], capture)] = index
 
-        queue = iter(chosen)
-        for path in queue:
-            start(path)
-            if len(window) == args.jobs:
-                break
-        while window:
-            path, future = window.popleft()
-            script = path.relative_to(STUDIES.parent)
-            status, seconds, output = future.result()
-            if capture:
-                print(f"== {script} --quick\n{output}", end="" if output.endswith("\n") else "\n", flush=True)
-            times.append((script, seconds))
-            if status != 0:
-                print(f"studies-quick: {script} --quick failed (exit status {status})", file=sys.stderr, flush=True)
-                return 1
-            following = next(queue, None)
-            if following is not None:
-                start(following)
+        while waiting and len(running) < args.jobs:
+            start()
+        while running:
+            done, _ = wait(running, return_when=FIRST_COMPLETED)
+            for future in done:
+                index = running.pop(future)
+                ended[index] = future.result()
+                failed = failed or ended[index][0] != 0
+            while printed in ended:
+                status, seconds, output = ended.pop(printed)
+                script = chosen[printed].relative_to(STUDIES.parent)
+                printed += 1
+                if capture:
+                    print(f"== {script} --quick\n{output}", end="" if output.endswith("\n") else "\n", flush=True)
+                times.append((script, seconds))
+                if status != 0:
+                    print(f"studies-quick: {script} --quick failed (exit status {status})", file=sys.stderr, flush=True)
+                    return 1
+            while not failed and waiting and len(running) < args.jobs:
+                start()
     print("\n".join(["== studies --quick: wall time", *(f"{t:7.1f} s  {s}" for s, t in times)]), flush=True)
     print(f"{sum(t for _, t in times):7.1f} s  in all ({len(times)} studies)", flush=True)
     if capture:

@@ -8,7 +8,7 @@ of ``--repeats`` runs after a warm-up run; BLAS threads pinned to one. Writes th
 ``docs/benchmarks.md``.
 
     python studies/bench_mpc.py            # 3 repeats of both devices
-    python studies/bench_mpc.py --quick    # m4-134, 10 Tp, one repeat (writes nothing)
+    python studies/bench_mpc.py --quick    # m4-134, 10 Tp, one run, no warm-up (writes nothing)
 """
 
 from __future__ import annotations
@@ -35,10 +35,12 @@ ELECTRICAL = {"name": "mpc", "dt": "Tp/20", "parameters": {"preview": "perfect",
 """The electrical objective (efficiency 0.7: one sequential convex programme per period, Clarabel by default)."""
 
 
-def measure(make, damping: dict, repeats: int, mpc: dict = MPC) -> dict[str, float]:
-    """Medians over ``repeats`` of the MPC run, the damping run and their ratio (paired), with the solve times."""
-    simulate(make(mpc))  # warm-up: numba, fits, caches
-    simulate(make(damping))
+def measure(make, damping: dict, repeats: int, mpc: dict = MPC, warm: bool = True) -> dict[str, float]:
+    """Medians over ``repeats`` of the MPC run, the damping run and their ratio (paired), with the solve times;
+    ``warm``: after a warm-up run of each (a smoke run, whose numbers are not kept, goes without)."""
+    if warm:
+        simulate(make(mpc))  # warm-up: numba, fits, caches
+        simulate(make(damping))
     runs, base, ratios, medians, p99s, states = [], [], [], [], [], ""
     for _ in range(repeats):
         start = time.perf_counter()
@@ -66,7 +68,7 @@ def main() -> None:
     args = parser.parse_args()
     damping = {"name": "damping", "parameters": {"damping": 6.0}}
     if args.quick:
-        print(measure(lambda c: m4_scene("m4-134", 1.2, "10 Tp", c, "beeman"), damping, 1))
+        print(measure(lambda c: m4_scene("m4-134", 1.2, "10 Tp", c, "beeman"), damping, 1, warm=False))
         return
     rows = []
     if WAVESTAR.is_file():

@@ -88,7 +88,8 @@ def command_times(repeats: int, quick: bool) -> dict[str, tuple[float, float, fl
     out = {}
     for method in ("convolution", "state_space"):
         command = [*base, "-o", str(work / "r.nc"), "-q", "--set", f'radiation.method="{method}"']
-        subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True)  # warm the numba cache
+        if not quick:  # warm the numba cache (a smoke run's one run may pay for it: its numbers are not kept)
+            subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True)
         read_and_clear()
         loops.clear()
         run, cpu = wall(command, repeats, work, read_and_clear)

@@ -159,7 +159,8 @@ def main(argv: list[str] | None = None) -> int:
     else:
         command = [py, "-m", "wecss.cli", "run", "-o", str(work / "r.nc"), "-q"]
         label = "`wecss run` (embedded default: m4-134, state space, 20,000 steps), whole command"
-    subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True)  # warm the numba cache
+    if not args.quick:  # warm the numba cache (a smoke run's one run may pay for it: its numbers are not kept)
+        subprocess.run(command, env=ENV, cwd=work, check=True, capture_output=True)
 
     def fresh() -> None:
         for name in ("r.nc", "r.png"):

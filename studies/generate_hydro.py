@@ -27,10 +27,10 @@ from wecss.hydro import DATA_DIR, HydroData
 from wecss.hydro.bem import BEMSpec, read_geometry, run_bem
 from wecss.netcdf import write_netcdf
 
-QUICK_PANEL_FACTOR = 3.0
+QUICK_PANEL_FACTOR = 4.0
 """--quick: panels this many times taller (the mesh keeps at least 24 sectors per float)."""
 
-QUICK_FREQUENCIES = 16
+QUICK_FREQUENCIES = 8
 """--quick: number of frequencies kept, spread over the lower half of the file's range (the coarse mesh gives
 negative heave damping near the top of the M4 range, where waves are a few panels long). --quick output only
 tests the pipeline: on its sparse grid the irregular-frequency check flags the M4 arrays' genuine interference

@@ -13,7 +13,8 @@ writes the table into ``docs/control.md`` (section "M4 134 with four PTOs") and 
 Tp per controller into ``docs/m4_control.png``.
 
     python studies/m4_control.py           # JONSWAP Hs 0.04 m, gamma 3.3, 100 Tp, dt Tp/200 (about 10 minutes)
-    python studies/m4_control.py --quick   # Tp 1.2 s, 10 Tp, linear simulator, damping and MPC (writes to out/)
+    python studies/m4_control.py --quick   # Tp 1.2 s, 10 Tp, linear simulator, damping and MPC (its plan's
+                                           # radiation reduced to 1e-2), writes to out/
 """
 
 from __future__ import annotations
@@ -179,6 +180,10 @@ def main() -> None:
     device = limited_device(ROOT / "out" if args.quick else Path(tempfile.mkdtemp()))
     if args.quick:
         quick = {k: CONTROLLERS[k] for k in ("damping 6", "MPC, perfect preview")}
+        # MPC's plan on its radiation reduced to 1e-2 (1e-3 in the full run): a smaller observer and programme, the
+        # run 8 s instead of 12 s and its power 717.4 mW instead of 717.8 (measured 2026-11-27)
+        mpc = quick["MPC, perfect preview"]
+        quick["MPC, perfect preview"] = {**mpc, "parameters": {**mpc["parameters"], "radiation_error": 1e-2}}
         rows = run_all(device, (1.2,), "10 Tp", quick, {"linear": "linear"})
         plot(rows, out / "m4_control.png")
         print(table(rows, pto_names(device)))

@@ -6,7 +6,7 @@ the complex-conjugate bound and of the constrained non-causal optimum (the ceili
 limits, on the linear model and the run's periodic record; the run's ramp and the nonlinear simulator are not in it).
 
     python studies/wecccomp.py            # all six sea states (prints the markdown tables for docs/control.md)
-    python studies/wecccomp.py --quick    # sea state 1, 40 s (CI smoke run)
+    python studies/wecccomp.py --quick    # sea state 1, 20 s (CI smoke run)
 
 A second table plays each sea state's periodic record twice (the competition's record, d_omega = 2 pi / its end
 time) and measures MPC over the second repeat, on the same record as the non-causal optima: the mechanical MPC's
@@ -220,7 +220,7 @@ def main() -> None:
         print(f"skipped: the WECCCOMP data are not in {DATA}")
         return
     states = [1] if args.quick else sorted(sea_states())
-    duration = 40.0 if args.quick else None
+    duration = 20.0 if args.quick else None
     print("| sea state | controller | EC [W] | mean P_elec [W] | mean P_abs [W] | abs f 98 [N] | abs z 98 [m] | "
           "share of spectral bound | share of constrained optimum | MPC fallbacks | run [s] |")  # fmt: skip
     print("|---|---|---|---|---|---|---|---|---|---|---|")

@@ -144,13 +144,13 @@ def test_the_runner_runs_every_study_and_stops_at_the_first_failure_naming_it(
     assert "(3 studies)" in capsys.readouterr().out
 
 
-def test_the_runner_with_two_jobs_prints_each_study_whole_in_name_order_and_starts_none_after_a_failure(
+def test_the_runner_with_two_jobs_fills_a_free_place_at_once_prints_in_name_order_and_starts_none_after_a_failure(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     runner, ran, body = _fake_studies(tmp_path, monkeypatch)
     # the first study ends last: its output must still come first, and whole
     (tmp_path / "a_slow.py").write_text(
-        body + "import time\ntime.sleep(1.0)\nprint('a line one')\nprint('a line two')\n"
+        body + "import time\ntime.sleep(2.0)\nprint('a line one')\nprint('a line two')\n"
     )
     (tmp_path / "b_quick.py").write_text(body + "print('b says')\n")
     (tmp_path / "c_fails.py").write_text(body + "print('c says', file=sys.stderr)\nsys.exit(4)\n")
@@ -162,9 +162,9 @@ def test_the_runner_with_two_jobs_prints_each_study_whole_in_name_order_and_star
     assert out.index("a_slow.py --quick\na line one\na line two\n") < out.index("b_quick.py --quick\nb says\n")
     assert out.index("b says") < out.index("c_fails.py --quick\nc says")
     assert "c_fails.py --quick failed (exit status 4)" in captured.err
-    # a and b take the two places, c starts when a is done, d when b is: c's failure starts nothing more, and d
-    # (already running) ends unprinted
-    assert sorted(p.name for p in ran.iterdir()) == ["a_slow", "b_quick", "c_fails", "d_next"]
+    # a and b take the two places, c takes b's as soon as b ends (a still sleeping): c's failure starts nothing
+    # more (d never runs), and a, which started before c, ends and is printed first
+    assert sorted(p.name for p in ran.iterdir()) == ["a_slow", "b_quick", "c_fails"]
     assert "d_next.py --quick" not in out
     (tmp_path / "c_fails.py").write_text(body)
     assert runner.main(["--jobs", "2"]) == 0

@@ -24,7 +24,9 @@ def _float_scene(parameters: dict) -> Scene:
     return Scene.from_dict(
         {
             "device": {"name": str(FLOAT)},
-            "sea": {"kind": "regular", "height": 0.01, "period": PERIOD, "duration": "60 T", "ramp": "5 T"},
+            # a regular wave: the mean over the final 10 T is that over the final 30 T of a 60 T run (measured ratios
+            # to the bound 0.53165 and 0.99865 against 0.53165 and 0.99869)
+            "sea": {"kind": "regular", "height": 0.01, "period": PERIOD, "duration": "20 T", "ramp": "5 T"},
             "controller": {"name": "mpc", "dt": 0.05, "parameters": parameters},
             "solver": {"method": "linear"},
             "radiation": {"method": "state_space"},
