@@ -125,6 +125,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     repeats = 1 if args.quick else args.repeats
+    load = os.getloadavg()[0]  # (1-minute)
     periods, minutes = (4, 2.0) if args.quick else (40, 30.0)
     regular = {"kind": "regular", "height": 0.28, "period": T, "duration": periods * T, "ramp": T}
     irregular = {"kind": "jonswap", "height": 0.5, "period": T, "duration": minutes * 60.0, "ramp": 2 * T}
@@ -158,7 +159,8 @@ def main() -> None:
     text = "\n".join([
         SECTION, "",
         f"{date.today()}, {platform.processor() or platform.machine()}, {os.cpu_count()} cores, medians of {repeats} "
-        "runs in one process (numba and the scenes compiled before), one BLAS thread. NOTC device, its arm elastic "
+        f"runs in one process (numba and the scenes compiled before), one BLAS thread, load average {load:.1f} at the "
+        "start (a shared machine: the ratios of one run are the figures to compare). NOTC device, its arm elastic "
         "(21 modal coordinates: 6 fixed-interface modes, 12 interface and 3 inertia-relief vectors) or frozen.", "",
         *table, "",
         f"Elastic against rigid, loop per step with the same runner: {ratio['regular']:.2f} (regular), "

@@ -73,8 +73,57 @@ def _numba() -> Any:
 
         # small-matrix products on slices: numba notes they are not contiguous; the cost is measured, not guessed
         warnings.filterwarnings("ignore", category=NumbaPerformanceWarning)
+        _register_reshaped()
         _NUMBA.append(numba)
     return _NUMBA[0]
+
+
+def reshaped(a: Any, shape: tuple[int, ...]) -> Any:
+    """``a.reshape(shape)`` for a C-contiguous array ``a`` (compiled: of numba's layout "C", such as a unit-step
+    slice of a contiguous 1-D array or an entry of a contiguous array's first axis) whose size is the shape's
+    product. Compiled, the view is made in place of numba's reshape, which calls out to a helper and
+    may raise (about 30 ns per view, and a possible raise keeps numba from pruning a kernel's reference counts: the
+    flexible bodies' kernels make a few dozen views of the plant's packed arrays per evaluation); the size is not
+    checked there."""
+    return a.reshape(shape)
+
+
+def _register_reshaped() -> None:
+    """The compiled form of :func:`reshaped` (numba imported: called once, by :func:`_numba`)."""
+    from numba.core import cgutils, types
+    from numba.core.errors import TypingError
+    from numba.core.imputils import impl_ret_borrowed
+    from numba.extending import intrinsic, overload
+    from numba.np.arrayobj import make_array, populate_array
+
+    @intrinsic
+    def view(typingctx: Any, a: Any, shape: Any) -> Any:
+        nd = len(shape)
+        result = types.Array(a.dtype, nd, "C")
+
+        def codegen(context: Any, builder: Any, sig: Any, args: Any) -> Any:
+            ary = make_array(sig.args[0])(context, builder, args[0])
+            items = cgutils.unpack_tuple(builder, args[1], nd)
+            dims = [context.cast(builder, v, t, types.intp) for v, t in zip(items, sig.args[1], strict=True)]
+            strides = [ary.itemsize] * nd
+            for d in range(nd - 2, -1, -1):
+                strides[d] = builder.mul(strides[d + 1], dims[d + 1])
+            out = make_array(result)(context, builder)
+            populate_array(out, data=ary.data, shape=dims, strides=strides, itemsize=ary.itemsize,
+                           meminfo=ary.meminfo, parent=ary.parent)  # fmt: skip
+            return impl_ret_borrowed(context, builder, result, out._getvalue())
+
+        return result(a, shape), codegen
+
+    @overload(reshaped, inline="always")
+    def compiled(a, shape):  # (unannotated: numba compares this signature with the lambda's)
+        if not (isinstance(a, types.Array) and a.layout == "C"):
+            raise TypingError(f"reshaped takes a C-contiguous array; got {a}")
+        if not (
+            isinstance(shape, types.UniTuple | types.Tuple) and all(isinstance(t, types.Integer) for t in shape.types)
+        ):
+            raise TypingError(f"reshaped takes a tuple of integers as the shape; got {shape}")
+        return lambda a, shape: view(a, shape)  # type: ignore[call-arg]  # (typingctx: numba's)
 
 
 def _put_in_place(namespace: dict[str, Any]) -> None:

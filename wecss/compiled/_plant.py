@@ -24,7 +24,7 @@ from ..multibody import (
     kinematics,
 )
 from ._body_exact import PressureArrays, no_pressure
-from ._jit import inline_kernel
+from ._jit import inline_kernel, reshaped
 from ._viscous import ViscousArrays, no_viscous
 
 
@@ -277,39 +277,39 @@ def _views(index: np.ndarray, data: np.ndarray) -> ElasticArrays:
     o += n_el
     row = index[o : o + n_el]
     o += n_el
-    active = index[o : o + n_el * k].reshape((n_el, k))
+    active = reshaped(index[o : o + n_el * k], (n_el, k))
     o += n_el * k
     child = index[o : o + n_att]
     o += n_att
     parent = index[o : o + n_att]
     o += n_att
-    pto_end = index[o : o + 2 * index[6]].reshape((index[6], 2))
+    pto_end = reshaped(index[o : o + 2 * index[6]], (index[6], 2))
     f = 0
     mass = data[f : f + n_el]
     f += n_el
-    first_moment = data[f : f + n_el * 3].reshape((n_el, 3))
+    first_moment = reshaped(data[f : f + n_el * 3], (n_el, 3))
     f += n_el * 3
-    coupling = data[f : f + n_el * 3 * nm].reshape((n_el, 3, nm))
+    coupling = reshaped(data[f : f + n_el * 3 * nm], (n_el, 3, nm))
     f += n_el * 3 * nm
-    rotational = data[f : f + n_el * 3 * nm].reshape((n_el, 3, nm))
+    rotational = reshaped(data[f : f + n_el * 3 * nm], (n_el, 3, nm))
     f += n_el * 3 * nm
-    second_moment = data[f : f + n_el * 9].reshape((n_el, 3, 3))
+    second_moment = reshaped(data[f : f + n_el * 9], (n_el, 3, 3))
     f += n_el * 9
-    inertia_first = data[f : f + n_el * nm * 9].reshape((n_el, nm, 3, 3))
+    inertia_first = reshaped(data[f : f + n_el * nm * 9], (n_el, nm, 3, 3))
     f += n_el * nm * 9
-    inertia_second = data[f : f + n_el * nm * nm * 9].reshape((n_el, nm, 3, 3, nm))
+    inertia_second = reshaped(data[f : f + n_el * nm * nm * 9], (n_el, nm, 3, 3, nm))
     f += n_el * nm * nm * 9
-    gyroscopic = data[f : f + n_el * nm * nm * 3].reshape((n_el, nm, nm, 3))
+    gyroscopic = reshaped(data[f : f + n_el * nm * nm * 3], (n_el, nm, nm, 3))
     f += n_el * nm * nm * 3
-    modal_mass = data[f : f + n_el * nm * nm].reshape((n_el, nm, nm))
+    modal_mass = reshaped(data[f : f + n_el * nm * nm], (n_el, nm, nm))
     f += n_el * nm * nm
-    geometric = data[f : f + n_el * nm * nm * nm].reshape((n_el, nm, nm, nm))
+    geometric = reshaped(data[f : f + n_el * nm * nm * nm], (n_el, nm, nm, nm))
     f += n_el * nm * nm * nm
-    undeformed = data[f : f + n_el * k * k].reshape((n_el, k, k))
+    undeformed = reshaped(data[f : f + n_el * k * k], (n_el, k, k))
     f += n_el * k * k
-    twists = data[f : f + n_att * nm * 6].reshape((n_att, nm, 6))
+    twists = reshaped(data[f : f + n_att * nm * 6], (n_att, nm, 6))
     f += n_att * nm * 6
-    on_path = data[f : f + n * n_att].reshape((n, n_att))
+    on_path = reshaped(data[f : f + n * n_att], (n, n_att))
     return ElasticArrays(
         of_body, body, size, column, coordinate, row, mass, first_moment, coupling, rotational, second_moment,
         inertia_first, inertia_second, gyroscopic, modal_mass, geometric, undeformed, active, of_child, child, parent,
