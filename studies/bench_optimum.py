@@ -92,7 +92,7 @@ def main() -> None:
         f"pinned to 1, {datetime.date.today().isoformat()}; the WECCCOMP Wavestar, 60 N / 0.08 m, the linear "
         f"model over each sea state's periodic record (force basis from the record's first harmonic to twice the "
         f"waves' highest), efficiency {EFFICIENCY} for the electrical objective (its value evaluated 16 times finer "
-        "than the samples). Medians of {args.repeats} calls after a warm-up (min-max "
+        f"than the samples). Medians of {args.repeats} calls after a warm-up (min-max "
         "beside).",
         "",
         "| sea state | objective | optimum [W] | bound [W] | harmonics | method | time [s] (min-max) |",
