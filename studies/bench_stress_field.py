@@ -1,7 +1,8 @@
 """Stress fields streamed (issue 28): the cost and memory of recording the signed von Mises stress at 500 points of
 the NOTC arm over 10^5 samples (a 30-minute sea state at dt = 0.018 s) in chunks of 2000 with
-``wecss.results.StressFieldRecorder``: the stresses (``StressModes.stresses``: modal coordinates, their accelerations
-and the 12 rigid-motion load coordinates), the streamed rainflow count and Miner sums of every point, the running
+``wecss.results.StressFieldRecorder``: the stresses (``StressModes.stresses``: modal coordinates, their rates and
+accelerations, the 12 rigid-motion load coordinates and the frame's angular velocity: the loads of the frame's
+rotation on the elastic motion among them), the streamed rainflow count and Miner sums of every point, the running
 extremes and RMS, then the Dataset.
 
 The modal series are synthetic (sinusoids at three wave periods and 2 % noise on every mode, made before the timing):
@@ -55,52 +56,58 @@ def arm_modes(n_points: int):  # type: ignore[no-untyped-def]
     return stress_modes(body.frame, body.basis.basis, points)
 
 
-def modal_series(modes, n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
-    """Modal coordinates (sinusoids at 6, 8.5 and 11 s and 2 % noise), their accelerations, rigid-motion loads."""
+def modal_series(modes, n: int, seed: int = 0) -> tuple[np.ndarray, ...]:  # type: ignore[no-untyped-def]
+    """The arguments of ``StressFieldRecorder.update``: modal coordinates (sinusoids at 6, 8.5 and 11 s and 2 %
+    noise), their accelerations, the rigid-motion loads, the modal rates and the frame's angular velocity."""
+    from wecss.structure import rigid_load_coordinates
+
     rng = np.random.default_rng(seed)
     t = np.arange(n)[:, None] * DT
     n_modes = modes.normal.shape[1]
     peak = np.abs(modes.normal).max(axis=0)
     scale = 10e6 / np.maximum(peak, 1e-2 * peak.max())
     q = np.zeros((n, n_modes))
+    q_dot = np.zeros((n, n_modes))
     q_ddot = np.zeros((n, n_modes))
     for period in (6.0, 8.5, 11.0):
         omega = 2 * np.pi / period
         a = scale * rng.uniform(0.05, 0.4, n_modes)
         wave = np.sin(omega * t + rng.uniform(0, 2 * np.pi, n_modes))
         q += a * wave
+        q_dot += omega * a * np.cos(omega * t + rng.uniform(0, 2 * np.pi, n_modes))
         q_ddot -= omega**2 * a * wave
     q += 0.02 * scale * rng.normal(size=(n, n_modes))
-    rigid = np.zeros((n, 12))
-    rigid[:, 2] = -9.81
-    rigid[:, :6] += 0.05 * rng.normal(size=(n, 6))
-    return q, q_ddot, rigid
+    spin = 0.05 * rng.normal(size=(n, 3))
+    rigid = rigid_load_coordinates(np.array([0.0, 0.0, -9.81]) + 0.05 * rng.normal(size=(n, 3)),
+                                   0.05 * rng.normal(size=(n, 3)), spin)  # fmt: skip
+    return q, q_ddot, rigid, q_dot, spin
 
 
-def record(modes, q, q_ddot, rigid):  # type: ignore[no-untyped-def]
-    """One recording in chunks of CHUNK samples; returns the recorder and its Dataset."""
+def record(modes, series):  # type: ignore[no-untyped-def]
+    """One recording of ``series`` (:func:`modal_series`) in chunks of CHUNK samples; returns the recorder and its
+    Dataset."""
     from wecss.results import StressFieldRecorder
 
     recorder = StressFieldRecorder(modes, DT)
-    for i in range(0, q.shape[0], CHUNK):
-        recorder.update(q[i : i + CHUNK], q_ddot[i : i + CHUNK], rigid[i : i + CHUNK])
+    for i in range(0, series[0].shape[0], CHUNK):
+        recorder.update(*(a[i : i + CHUNK] for a in series))
     return recorder, recorder.result()
 
 
-def stresses_only(modes, q, q_ddot, rigid) -> None:  # type: ignore[no-untyped-def]
-    for i in range(0, q.shape[0], CHUNK):
-        modes.stresses(q[i : i + CHUNK], q_ddot[i : i + CHUNK], rigid[i : i + CHUNK])
+def stresses_only(modes, series) -> None:  # type: ignore[no-untyped-def]
+    for i in range(0, series[0].shape[0], CHUNK):
+        modes.stresses(*(a[i : i + CHUNK] for a in series))
 
 
-def counter_only(modes, q, q_ddot, rigid) -> float:  # type: ignore[no-untyped-def]
+def counter_only(modes, series) -> float:  # type: ignore[no-untyped-def]
     """Time of the streamed rainflow count alone (``StreamingRainflow.update`` on each chunk's stresses, then
     ``damage``) [s]."""
     from wecss.results import StreamingRainflow
 
     counter = StreamingRainflow(len(modes.points))
     spent = 0.0
-    for i in range(0, q.shape[0], CHUNK):
-        signed = modes.stresses(q[i : i + CHUNK], q_ddot[i : i + CHUNK], rigid[i : i + CHUNK])["signed_von_mises"]
+    for i in range(0, series[0].shape[0], CHUNK):
+        signed = modes.stresses(*(a[i : i + CHUNK] for a in series))["signed_von_mises"]
         start = time.perf_counter()
         counter.update(signed)
         spent += time.perf_counter() - start
@@ -127,14 +134,14 @@ def main(argv: list[str] | None = None) -> int:
     samples, repeats = (5000, 1) if args.quick else (args.samples, args.repeats)
 
     modes = arm_modes(N_POINTS)
-    q, q_ddot, rigid = modal_series(modes, samples)
-    record(modes, q[:50], q_ddot[:50], rigid[:50])  # compile the counting loop (numba) before timing
+    series = modal_series(modes, samples)
+    record(modes, [a[:50] for a in series])  # compile the counting loop (numba) before timing
 
-    total = median_time(lambda: record(modes, q, q_ddot, rigid), repeats)
-    products = median_time(lambda: stresses_only(modes, q, q_ddot, rigid), repeats)
-    counting = float(np.median([counter_only(modes, q, q_ddot, rigid) for _ in range(repeats)]))
+    total = median_time(lambda: record(modes, series), repeats)
+    products = median_time(lambda: stresses_only(modes, series), repeats)
+    counting = float(np.median([counter_only(modes, series) for _ in range(repeats)]))
     tracemalloc.start()
-    recorder, ds = record(modes, q, q_ddot, rigid)
+    recorder, ds = record(modes, series)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     held = recorder.counter.nbytes
@@ -148,7 +155,8 @@ def main(argv: list[str] | None = None) -> int:
         "",
         f"{N_POINTS} stress points of the NOTC arm (30 fibres around the tube at each node), {samples:,} samples "
         f"(dt = {DT} s, {samples * DT / 60:.0f} min) in chunks of {CHUNK}: `StressFieldRecorder.update` with modal "
-        "coordinates, their accelerations and the rigid-motion loads, then `result()`. Synthetic modal series with "
+        "coordinates, their rates and accelerations, the rigid-motion loads and the frame's angular velocity, then "
+        "`result()`. Synthetic modal series with "
         "2 % noise (a reversal at about every other sample: the counter's worst case). "
         f"{date.today().isoformat()}, {platform.machine()}, one BLAS thread, numba {'on' if JIT else 'off'}, "
         f"load {os.getloadavg()[0]:.1f}; median of {repeats}.",
@@ -156,13 +164,14 @@ def main(argv: list[str] | None = None) -> int:
         "| | value |",
         "|---|---|",
         f"| whole recording (stresses, rainflow, extremes, RMS, Dataset) | {total:.2f} s |",
-        f"| of which the stresses (`StressModes.stresses`, three products) | {products:.2f} s |",
+        "| of which the stresses (`StressModes.stresses`: three products at the points, two at the cuts) | "
+        f"{products:.2f} s |",
         f"| of which the rainflow count and Miner sums (`StreamingRainflow`, timed alone) | {counting:.2f} s |",
         f"| per sample and point | {1e9 * total / (samples * N_POINTS):.1f} ns |",
         f"| peak of Python's allocations during a recording (`tracemalloc`) | {peak / 1e6:.1f} MB |",
         f"| held by the rainflow counters at the end (residue up to {residue} points) | {held / 1e3:.1f} kB |",
         f"| the whole field as one array (points x samples, float64), for comparison | {whole:.0f} MB |",
-        f"| peak resident memory of the process (`ru_maxrss`, inputs of {q.nbytes * 2 / 1e6 + rigid.nbytes / 1e6:.0f}"
+        f"| peak resident memory of the process (`ru_maxrss`, inputs of {sum(a.nbytes for a in series) / 1e6:.0f}"
         f" MB included) | {rss:.0f} MB |",
         "",
         f"The shortest life: {float(ds.life_years.min()):.3g} years at "
@@ -174,8 +183,11 @@ def main(argv: list[str] | None = None) -> int:
         "rest of the time is the extremes, the RMS and the input checks. The noise makes this the counter's "
         "worst case (a cycle for about every other sample); about half of its time is the S-N curve evaluated"
         " per cycle (`SNCurve.cycles_to_failure`, a logarithm and a power), the rest the compiled loop. The "
-        "stresses are three BLAS products per chunk (`StressModes.stresses` used `numpy.einsum`, about eight "
-        "times slower on these sizes, before this section).",
+        "stresses are BLAS products per chunk: three at the points (modal coordinates, accelerations, rigid-motion "
+        "loads), two at the cuts (the frame's rotation and angular velocity times the modal coordinates and "
+        "rates: 17 cuts of six loads, against 500 points) and the cuts' loads carried to the points "
+        "(`StressModes.stresses` used `numpy.einsum`, about eight times slower on these sizes, before this "
+        "section).",
     ]
     text = "\n".join(lines)
     print(text)

@@ -1,21 +1,23 @@
 """Stress transfer functions of a device's elastic bodies: the linearised stress at every fibre point per wave
 component, from the exact frequency-domain solution.
 
-An elastic body's stress at a fibre point (``wecss.sim._fibre_field``) is sigma = S xi + S_a xi_ddot + S_r r +
-xi' S_g xi, with xi its modal coordinates and r the rigid-motion load coordinates of its floating frame: g - a_o
-(gravity less the acceleration of the frame's origin, body axes), the angular acceleration alpha and the products of
-the angular velocity. About the static equilibrium (xi0, frame rotation R0, g_b0 = R0' g, the static deflection's
-shift d0 = Ct xi0 / m of the centre of mass) a wave component of frequency omega moves the frame by the small
-rotation theta (body axes) and the centre of mass by c (world), the modal coordinates by xi_hat; to first order
+An elastic body's stress at a fibre point (``wecss.sim._fibre_field``) is
+sigma = S xi + S_a xi_ddot + S_r r + (S_m r) xi + (S_c w) xi_dot + xi' S_g xi, with xi its modal coordinates and r
+the rigid-motion load coordinates of its floating frame: g - a_o (gravity less the acceleration of the frame's
+origin, body axes), the angular acceleration alpha and the products of the angular velocity w. About the static
+equilibrium (xi0, frame rotation R0, g_b0 = R0' g, the static deflection's shift d0 = Ct xi0 / m of the centre of
+mass) a wave component of frequency omega moves the frame by the small rotation theta (body axes) and the centre of
+mass by c (world), the modal coordinates by xi_hat; to first order
 
     g_b  = g_b0 + g_b0 x theta,     alpha = -omega^2 theta,     a_o = -omega^2 (R0' c - theta x d0 - d),
 
 (d = Ct xi_hat / m; a_o is the acceleration of the frame's point c0, carried to the stress modes' origin by
 alpha x (o - c0)) and the angular-velocity products are of second order. Hence the complex amplitude
 
-    sigma_hat = (S - omega^2 S_a + 2 sym(S_g) xi0) xi_hat + S_r r_hat,
+    sigma_hat = (S - omega^2 S_a + 2 sym(S_g) xi0) xi_hat + S_r r_hat + (S_m alpha_hat) xi0,
 
-per wave component, exact for the linearised equations. The static value is sigma0 = S xi0 + S_r (g_b0, 0, 0) +
+per wave component, exact for the linearised equations (alpha_hat acting on the static deflection xi0; the terms of
+w are of second order). The static value is sigma0 = S xi0 + S_r (g_b0, 0, 0) +
 xi0' S_g xi0. Modal coordinates held quasi-static (``flexible.quasi_static_above``) have no acceleration, as in a
 run: the terms of the accelerations (-omega^2 S_a xi_hat, alpha, a_o) leave out their part (the condensed linear
 model of ``wecss.linear._model``); theta in the gravity term and xi_hat in S xi_hat are the displacements.
@@ -98,12 +100,16 @@ def stress_response(compiled: CompiledScene) -> xr.Dataset:
         gravity = np.cross(g_b0, theta, axis=0)
         r_hat = np.concatenate([gravity - origin_acc, alpha, np.zeros((6, omega.size))])  # (12, n_w): RIGID_LOADS
         r0 = rigid_load_coordinates(g_b0, np.zeros(3), np.zeros(3))
-        for lin, acc, rig, geo, out, out0 in (
-            (modes.normal, modes.normal_acceleration, modes.normal_rigid, modes.normal_geometric, normal, normal0),
-            (modes.shear, modes.shear_acceleration, modes.shear_rigid, modes.shear_geometric, shear, shear0),
-        ):
+        # alpha's loads on the static deflection, (n_point, n_w) each
+        turning_sag = modes.at_points(np.einsum("sjkn,n,kw->wsj", modes.section_motion[:, :, :3], xi0, alpha))
+        for lin, acc, rig, geo, sag, out, out0 in (
+            (modes.normal, modes.normal_acceleration, modes.normal_rigid, modes.normal_geometric, turning_sag[0],
+             normal, normal0),
+            (modes.shear, modes.shear_acceleration, modes.shear_rigid, modes.shear_geometric, turning_sag[1], shear,
+             shear0),
+        ):  # fmt: skip
             tangent = lin if geo is None else lin + np.einsum("pmk,m->pk", geo + geo.transpose(0, 2, 1), xi0)
-            out.append(tangent @ xi_hat - (acc @ moving[own]) * w2 + rig @ r_hat)
+            out.append(tangent @ xi_hat - (acc @ moving[own]) * w2 + rig @ r_hat + sag.T)
             static = lin @ xi0 + rig @ r0
             out0.append(static if geo is None else static + np.einsum("m,pmk,k->p", xi0, geo, xi0))
         names += [p.name for p in modes.points]

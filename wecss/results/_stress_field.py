@@ -63,6 +63,9 @@ class StressFieldRecorder:
         ``signed_von_mises_series``); memory grows with the record for these only.
     every : int
         Keep every ``every``-th sample of those series (from the first) (default 1).
+    motion : bool
+        Add the loads of the frame's rotation on the elastic displacements when the rigid-motion coordinates are
+        given (``StressModes.stresses``); False for a quasi-static response solved without them (default True).
 
     Raises
     ------
@@ -85,6 +88,7 @@ class StressFieldRecorder:
         curve: str | SNCurve = "paper-003-table-5",
         keep: Sequence[str] = (),
         every: int = 1,
+        motion: bool = True,
     ) -> None:
         if not isinstance(modes, StressModes):
             raise ValueError(f"modes must be a wecss.structure.StressModes, got {type(modes).__name__}")
@@ -104,6 +108,9 @@ class StressFieldRecorder:
                              f"{self.names[:4]}")  # fmt: skip
         self.keep = [self.names.index(k) for k in keep]
         self.every = int(every)
+        if not isinstance(motion, bool | np.bool_):
+            raise ValueError(f"motion must be True or False, got {motion!r}")
+        self.motion = bool(motion)
         n = len(modes.points)
         if n == 0:
             raise ValueError("the stress modes have no points; give StressModes with at least one StressPoint")
@@ -125,7 +132,14 @@ class StressFieldRecorder:
         """Samples recorded so far."""
         return self._seen
 
-    def update(self, q: np.ndarray, q_ddot: np.ndarray | None = None, rigid: np.ndarray | None = None) -> None:
+    def update(
+        self,
+        q: np.ndarray,
+        q_ddot: np.ndarray | None = None,
+        rigid: np.ndarray | None = None,
+        q_dot: np.ndarray | None = None,
+        omega: np.ndarray | None = None,
+    ) -> None:
         """Record the next samples.
 
         Parameters
@@ -135,20 +149,27 @@ class StressFieldRecorder:
         q_ddot : array_like (n, n_modes), optional
             Their accelerations [1/s^2] (the modes' inertia loads).
         rigid : array_like (n, 12), optional
-            The rigid-motion load coordinates (``wecss.structure.RIGID_LOADS``).
+            The rigid-motion load coordinates (``wecss.structure.RIGID_LOADS``); with them the loads of the
+            frame's rotation on the elastic displacements.
+        q_dot, omega : array_like (n, n_modes) and (n, 3), optional
+            The modal rates [1/s] and the frame's angular velocity [rad/s] (body axes), both or neither: the
+            Coriolis loads of the elastic motion.
 
         Raises
         ------
         ValueError
-            If a shape is not the one above or a value is not finite.
+            If a shape is not the one above, a value is not finite, or one of ``q_dot`` and ``omega`` is given
+            without the other.
         """
         q = self._rows("q", q, self.n_modes, None)
         n = q.shape[0]
         q_ddot = None if q_ddot is None else self._rows("q_ddot", q_ddot, self.n_modes, n)
         rigid = None if rigid is None else self._rows("rigid", rigid, N_RIGID, n)
+        q_dot = None if q_dot is None else self._rows("q_dot", q_dot, self.n_modes, n)
+        omega = None if omega is None else self._rows("omega", omega, 3, n)
         if n == 0:
             return
-        signed = self.modes.stresses(q, q_ddot, rigid)["signed_von_mises"]
+        signed = self.modes.stresses(q, q_ddot, rigid, q_dot, omega, motion=self.motion)["signed_von_mises"]
         self.counter.update(signed)
         np.maximum(self._max, signed.max(axis=0, initial=-np.inf), out=self._max)
         np.minimum(self._min, signed.min(axis=0, initial=np.inf), out=self._min)

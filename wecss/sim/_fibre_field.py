@@ -11,21 +11,24 @@ rigid-body motion, spread over its mass (the 12 coordinates of ``wecss.structure
     K_r xi(t) = Phi' (sum_k P_k' w_k(t) + L r(t)),
 
 with K_r = diag(omega^2) the basis's stiffness, P_k the map of a point's wrench to the nodes, L the rigid-motion
-loads. The basis holds the static response to every one of these loads (whatever ``flexible.centrifugal`` says of
-the dynamic basis), so xi is the exact quasi-static deformation, and the stresses at every fibre point (the stress
-modes of the body's points, whose section loads include the rigid-motion loads) equal the free-body cut's wherever
-both are defined, to the difference of the two mass models (the structure's sections have rotary inertia; its mass
-is the body's to 0.1 %): the free-body cut of the hot spots (``wecss.sim._sections``) is the test oracle. The field
-is counted point by point (``wecss.results.StressFieldRecorder``) over the statistics window, chunk by chunk.
+loads (of the undeformed body: the loads of its rotation on its deformation are left out of the solve, and so of its
+stresses, ``motion=False``). The basis holds the static response to every one of these loads (whatever
+``flexible.centrifugal`` says of the dynamic basis), so xi is the exact quasi-static deformation, and the stresses
+at every fibre point (the stress modes of the body's points, whose section loads include the rigid-motion loads)
+equal the free-body cut's wherever both are defined, to the difference of the two mass models (the structure's
+sections have rotary inertia; its mass is the body's to 0.1 %): the free-body cut of the hot spots
+(``wecss.sim._sections``) is the test oracle. The field is counted point by point
+(``wecss.results.StressFieldRecorder``) over the statistics window, chunk by chunk.
 
 Only dry bodies: a wetted body's hydrodynamic loads act over its surface, not at points of its structure.
 
 An elastic body (``flexible.dynamics = "elastic"``) carries its deformation in its modal coordinates xi(t): its
-stresses are those of its basis's stress modes, sigma = S xi + S_a xi_ddot + S_r r (+ xi' S_g xi with its geometric
-stiffening), with r the rigid-motion load coordinates of its floating frame's motion (``ElasticHistory``): the section
-loads of the finite-element solution
--(K u + M a - f) element by element, the Coriolis and centrifugal loads of the elastic velocities and displacements
-(2 w x u_dot, w x (w x u), alpha x u) left out (``wecss.structure._stress``).
+stresses are those of its basis's stress modes, sigma = S xi + S_a xi_ddot + S_r r + (S_m r) xi + (S_c w) xi_dot
+(+ xi' S_g xi with its geometric stiffening), with r the rigid-motion load coordinates of its floating frame's motion
+(``ElasticHistory``) and w its angular velocity: the section loads of the finite-element solution -(K u + M a - f)
+element by element, with the d'Alembert loads of the whole acceleration of its mass points in the floating frame,
+the Coriolis and centrifugal loads of the elastic motion included (2 w x u_dot, w x (w x u), alpha x u and the
+rotary inertia's share: ``wecss.structure._stress``).
 """
 
 from __future__ import annotations
@@ -89,13 +92,14 @@ def quasi_static_coordinates(
 class ElasticHistory:
     """An elastic body's modal coordinates and its floating frame's motion at the saved steps.
 
-    xi, xi_ddot : (n_t, n) its modal coordinates [1] and their accelerations [1/s^2]; gravity : (n_t, 3) g in body
-    axes [m/s^2]; origin_acceleration : (n_t, 3) the acceleration of the frame's point ``origin`` [m/s^2], alpha,
-    omega : (n_t, 3) the frame's angular acceleration [rad/s^2] and velocity [rad/s], body axes; origin : (3,) that
-    point in the frame's coordinates (the reference configuration's world coordinates) [m].
+    xi, xi_dot, xi_ddot : (n_t, n) its modal coordinates [1], their rates [1/s] and accelerations [1/s^2]; gravity :
+    (n_t, 3) g in body axes [m/s^2]; origin_acceleration : (n_t, 3) the acceleration of the frame's point ``origin``
+    [m/s^2], alpha, omega : (n_t, 3) the frame's angular acceleration [rad/s^2] and velocity [rad/s], body axes;
+    origin : (3,) that point in the frame's coordinates (the reference configuration's world coordinates) [m].
     """
 
     xi: np.ndarray
+    xi_dot: np.ndarray
     xi_ddot: np.ndarray
     gravity: np.ndarray
     origin_acceleration: np.ndarray
@@ -135,17 +139,23 @@ def fibre_field(bodies: list[tuple[FlexibleBody, BodyHistory | ElasticHistory]],
     if bodies and bodies[0][1].gravity.shape[0] - start < 2:
         bodies = []
     for body, history in bodies:
+        elastic = isinstance(history, ElasticHistory)
+        xi_dot: np.ndarray | None
+        xi_ddot: np.ndarray | None
+        omega: np.ndarray | None
         if isinstance(history, ElasticHistory):
-            modes, xi, xi_ddot = body.stresses, history.xi, history.xi_ddot
-            rigid = history.rigid_coordinates(body.invariants.origin)
-        else:
+            modes, xi, xi_dot, xi_ddot = body.stresses, history.xi, history.xi_dot, history.xi_ddot
+            rigid, omega = history.rigid_coordinates(body.invariants.origin), history.omega
+        else:  # a quasi-static response to the rigid body's loads: no rates, no accelerations, no loads of its motion
             basis, modes = static_basis(body)
             xi, rigid = quasi_static_coordinates(body, basis, history)
-            xi_ddot = None
-        recorder = StressFieldRecorder(modes, dt)
+            xi_dot = xi_ddot = omega = None
+        recorder = StressFieldRecorder(modes, dt, motion=elastic)
         for first in range(start, xi.shape[0], CHUNK):
             chunk = slice(first, first + CHUNK)
-            recorder.update(xi[chunk], None if xi_ddot is None else xi_ddot[chunk], rigid[chunk])
+            recorder.update(
+                xi[chunk], *(None if a is None else a[chunk] for a in (xi_ddot, rigid, xi_dot, omega))
+            )  # fmt: skip
         parts.append(recorder.result())
     if not parts:
         empty = np.zeros(0)

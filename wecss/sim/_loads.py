@@ -216,19 +216,20 @@ def recover_loads(compiled: CompiledScene, q: np.ndarray, v: np.ndarray, a: np.n
         out.section = section_loads(members, index, model.bodies, histories)
         out.histories = histories
         for i in elastic:
-            xi, xi_ddot, origin_acceleration = (np.array(c) for c in zip(*frames[i], strict=True))
+            xi, xi_dot, xi_ddot, origin_acceleration = (np.array(c) for c in zip(*frames[i], strict=True))
             h, body = histories[i], model.bodies[i].elastic
             assert body is not None
             origin = body.invariants.origin
-            out.elastic[i] = ElasticHistory(xi, xi_ddot, h.gravity, origin_acceleration, h.alpha, h.omega, origin)
+            out.elastic[i] = ElasticHistory(xi, xi_dot, xi_ddot, h.gravity, origin_acceleration, h.alpha, h.omega,
+                                            origin)  # fmt: skip
     return out
 
 
 def _frame_motion(model, i: int, q: np.ndarray, v: np.ndarray, v_dot: np.ndarray, acc: np.ndarray, rot, omega):
-    """Elastic body ``i``'s modal coordinates, their accelerations and the acceleration (body axes) [m/s^2] of its
-    floating frame's origin (the undeformed centre of mass c0), from the Cartesian accelerations ``acc`` (its rows:
-    the instantaneous centre of mass c = c0 + d, d = Ct xi / m, then the body's angular acceleration): the frame
-    point's acceleration is a_c - alpha x d - w x (w x d) - 2 w x d_dot - d_ddot (body axes)."""
+    """Elastic body ``i``'s modal coordinates, their rates and accelerations and the acceleration (body axes) [m/s^2] of
+    its floating frame's origin (the undeformed centre of mass c0), from the Cartesian accelerations ``acc`` (its
+    rows: the instantaneous centre of mass c = c0 + d, d = Ct xi / m, then the body's angular acceleration): the
+    frame point's acceleration is a_c - alpha x d - w x (w x d) - 2 w x d_dot - d_ddot (body axes)."""
     elastic = model.bodies[i].elastic
     inv = elastic.invariants
     coupling = inv.translational_coupling / inv.mass
@@ -239,7 +240,7 @@ def _frame_motion(model, i: int, q: np.ndarray, v: np.ndarray, v_dot: np.ndarray
     alpha = acc[s + 3 : s + 6]
     origin = rot.T @ acc[s : s + 3] - cross3(alpha, d) - cross3(omega, cross3(omega, d))
     origin -= 2 * cross3(omega, d_dot) + d_ddot
-    return [xi.copy(), v_dot[own].copy(), origin]
+    return [xi.copy(), v[own].copy(), v_dot[own].copy(), origin]
 
 
 def _elastic_ends(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray) -> dict:

@@ -39,14 +39,15 @@ RIGID_LOADS = (
 body frame's origin g - a [m/s^2], the angular acceleration alpha [rad/s^2] and the products of the angular velocity's
 components [rad^2/s^2]. The loads of the body's own weight and d'Alembert inertia are linear in them."""
 
-_PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
+PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
+"""The (a, b) of the angular-velocity products w_a w_b of :data:`RIGID_LOADS` (its last six coordinates)."""
 
 
 def rigid_load_coordinates(gravity_minus_acceleration: np.ndarray, alpha: np.ndarray, omega: np.ndarray) -> np.ndarray:
     """The :data:`RIGID_LOADS` coordinates (..., 12) of a rigid-body motion from g - a [m/s^2], the angular
     acceleration alpha [rad/s^2] and velocity omega [rad/s] (each (..., 3), body axes)."""
     w = np.asarray(omega, dtype=float)
-    products = np.stack([w[..., a] * w[..., b] for a, b in _PAIRS], axis=-1)
+    products = np.stack([w[..., a] * w[..., b] for a, b in PAIRS], axis=-1)
     return np.concatenate([np.asarray(gravity_minus_acceleration, dtype=float), np.asarray(alpha, dtype=float),
                            products], axis=-1)  # fmt: skip
 
@@ -334,7 +335,7 @@ def group_rigid_loads(group: MassGroup, origin: np.ndarray) -> np.ndarray:
         forces[:, k] = g.masses[:, None] * eye[k]
         forces[:, 3 + k] = -g.masses[:, None] * np.cross(eye[k], r)
         moments[:, 3 + k] = -g.inertias @ eye[k]
-    for c, (a, b) in enumerate(_PAIRS):
+    for c, (a, b) in enumerate(PAIRS):
         # -w x (w x r) = |w|^2 r - w (w . r) and -w x (J w), coefficient of w_a w_b (both orders for a != b)
         if a == b:
             forces[:, 6 + c] = g.masses[:, None] * (r - np.outer(r[:, a], eye[a]))
