@@ -549,6 +549,11 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_argument(
         "--select", action="append", metavar="DIM=VALUE", help="a sweep: fix a dimension beyond two (repeatable)"
     )
+    warm = sub.add_parser(
+        "precompile",
+        help="compile the time loops into numba's cache (minutes, once per install; later runs load them)",
+    )
+    warm.add_argument("--jobs", type=int, default=2, help="processes compiling at once (default 2)")
     return parser
 
 
@@ -603,6 +608,11 @@ def _command(args: argparse.Namespace) -> int:
             return _plot(args)
         if args.command == "modes":
             return _structural_modes(args)
+        if args.command == "precompile":
+            from .sim import precompile
+
+            precompile(args.jobs)
+            return 0
     except ImportError as err:
         hint = refusal_hint(err)
         print(f"wecss: error: {err}" + (f"; {hint}: give run --allow-dask" if hint else ""), file=sys.stderr)

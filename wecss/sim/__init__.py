@@ -26,6 +26,7 @@ from ._errors import ControllerTimeout as ControllerTimeout
 from ._errors import PtoLimitExceeded as PtoLimitExceeded
 from ._errors import SimulationDiverged as SimulationDiverged
 from ._linear import simulate_linear as simulate_linear
+from ._precompile import precompile as precompile
 from ._progress import format_seconds as format_seconds
 from ._record import Record as Record
 from ._record import window_statistics as window_statistics
