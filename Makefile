@@ -7,6 +7,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
+COMPILED := $(VENV)/.precompiled
 
 .PHONY: demo test test-all lint typecheck docs studies-quick clean
 
@@ -16,16 +17,22 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e ".[test,bem,h5,fast,dask,fatigue,docs]"
 	touch $(STAMP)
 
+# numba's cache of the runners' time loops, filled once after the install (wecss precompile: minutes, two processes);
+# the suite's workers then load the loops instead of each compiling them
+$(COMPILED): $(STAMP)
+	$(VENV)/bin/wecss precompile --jobs 2
+	touch $(COMPILED)
+
 demo: $(STAMP)
 	$(VENV)/bin/wecss run
 
 # the suite on one worker process per core (pytest-xdist); PYTEST_WORKERS=0 runs it in this process
 PYTEST_WORKERS ?= auto
 
-test: $(STAMP)
+test: $(COMPILED)
 	$(PY) -m pytest -n $(PYTEST_WORKERS)
 
-test-all: $(STAMP)
+test-all: $(COMPILED)
 	$(PY) -m pytest -n $(PYTEST_WORKERS) -m "slow or not slow"
 
 lint: $(STAMP)

@@ -3,8 +3,9 @@
 With numba (``wecss[fast]``) the kernels are compiled on their first call and cached on disk beside their modules
 (``cache=True``); a fresh install compiles them in its first runs, minutes for each runner's loop (the default
 scene's Beeman loop alone about 3.5 minutes of one core). :func:`precompile` runs a few steps of small scenes that
-call every runner's loop and the nonlinear hydrodynamics' kernels, in ``jobs`` processes at once, so that later runs
-(and the test suite's workers, which would each compile them) load them from the cache. A numba type the scenes here
+call every runner's loop and the nonlinear hydrodynamics' kernels, the first alone (it compiles the kernels the loops
+share) and the others in ``jobs`` processes at once, so that later runs (the test suite's workers, which would each
+compile them, a sweep's workers on a cluster sharing the install) load them from the cache. A numba type the scenes here
 do not meet is still compiled on first use.
 """
 
@@ -28,18 +29,24 @@ _BASE: dict[str, Any] = {
 }
 _NONLINEAR = {"hydrostatics": "body-exact", "froude_krylov": "body-exact"}
 
+
+def _scene(**sections: dict[str, Any]) -> dict[str, Any]:
+    """A 0.6 s JONSWAP run of M4 134 with state-space radiation and a damping PTO, with ``sections`` replaced."""
+    return {**_BASE, **sections}
+
+
 PRECOMPILED: dict[str, dict[str, Any]] = {
-    "beeman": {"solver": {"method": "beeman"}},
-    "rk4": {"solver": {"method": "rk4"}},
-    "generalized-alpha": {"solver": {"method": "generalized-alpha"}},
-    "beeman-explicit": {"solver": {"method": "beeman-explicit"}},
-    "beeman, convolution memory": {"solver": {"method": "beeman"}, "radiation": {"method": "convolution"}},
-    "beeman, body-exact": {"solver": {"method": "beeman"}, "hydrodynamics": _NONLINEAR},
-    "rk4, body-exact": {"solver": {"method": "rk4"}, "hydrodynamics": _NONLINEAR},
-    "generalized-alpha, body-exact": {"solver": {"method": "generalized-alpha"}, "hydrodynamics": _NONLINEAR},
+    "beeman": _scene(solver={"method": "beeman"}),
+    "rk4": _scene(solver={"method": "rk4"}),
+    "generalized-alpha": _scene(solver={"method": "generalized-alpha"}),
+    "beeman-explicit": _scene(solver={"method": "beeman-explicit"}),
+    "beeman, convolution memory": _scene(solver={"method": "beeman"}, radiation={"method": "convolution"}),
+    "beeman, body-exact": _scene(solver={"method": "beeman"}, hydrodynamics=_NONLINEAR),
+    "rk4, body-exact": _scene(solver={"method": "rk4"}, hydrodynamics=_NONLINEAR),
+    "generalized-alpha, body-exact": _scene(solver={"method": "generalized-alpha"}, hydrodynamics=_NONLINEAR),
 }
-"""The scenes :func:`precompile` runs, by name: the sections that differ from a 0.6 s JONSWAP run of M4 134 with
-state-space radiation and a damping PTO."""
+"""The scenes :func:`precompile` runs, by name (``Scene.from_dict``'s input): a few steps of each runner whose time
+loop numba compiles, with linear and with body-exact hydrodynamics."""
 
 
 def precompile(jobs: int = 2, progress: bool = True) -> dict[str, float]:
@@ -59,17 +66,20 @@ def precompile(jobs: int = 2, progress: bool = True) -> dict[str, float]:
         return {}
     times: dict[str, float] = {}
     start = time.perf_counter()
+    first, *rest = PRECOMPILED
     with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn")) as pool:
-        futures = {pool.submit(_run, name): name for name in PRECOMPILED}
-        for future in as_completed(futures):
-            name = futures[future]
-            times[name] = future.result()
-            if progress:
-                print(
-                    f"precompile: {name} ({times[name]:.0f} s; {len(times)}/{len(PRECOMPILED)}, "
-                    f"{time.perf_counter() - start:.0f} s in all)",
-                    file=sys.stderr,
-                )
+        # the first scene alone: it compiles the kernels every loop shares, which the others then load
+        for names in ([first], rest):
+            futures = {pool.submit(_run, name): name for name in names}
+            for future in as_completed(futures):
+                name = futures[future]
+                times[name] = future.result()
+                if progress:
+                    print(
+                        f"precompile: {name} ({times[name]:.0f} s; {len(times)}/{len(PRECOMPILED)}, "
+                        f"{time.perf_counter() - start:.0f} s in all)",
+                        file=sys.stderr,
+                    )
     return times
 
 
@@ -78,7 +88,6 @@ def _run(name: str) -> float:
     from ..scene import Scene
     from ._simulate import simulate
 
-    data = {**_BASE, **PRECOMPILED[name]}
     begin = time.perf_counter()
-    simulate(Scene.from_dict(data))
+    simulate(Scene.from_dict(PRECOMPILED[name]))
     return time.perf_counter() - begin
