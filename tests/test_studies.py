@@ -148,10 +148,14 @@ def test_the_runner_with_two_jobs_fills_a_free_place_at_once_prints_in_name_orde
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     runner, ran, body = _fake_studies(tmp_path, monkeypatch)
-    # the first study ends last: its output must still come first, and whole
-    (tmp_path / "a_slow.py").write_text(
-        body + "import time\ntime.sleep(2.0)\nprint('a line one')\nprint('a line two')\n"
+    # the first study ends last (it waits until c has started, then a second more, for c's failure to be seen): its
+    # output must still come first, and whole
+    wait = (
+        "import time\nstart = time.monotonic()\n"
+        f"while not Path({str(ran)!r}, 'c_fails').exists() and time.monotonic() - start < 60:\n"
+        "    time.sleep(0.05)\ntime.sleep(1.0)\n"
     )
+    (tmp_path / "a_slow.py").write_text(body + wait + "print('a line one')\nprint('a line two')\n")
     (tmp_path / "b_quick.py").write_text(body + "print('b says')\n")
     (tmp_path / "c_fails.py").write_text(body + "print('c says', file=sys.stderr)\nsys.exit(4)\n")
     (tmp_path / "d_next.py").write_text(body)
