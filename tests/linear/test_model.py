@@ -122,6 +122,22 @@ def test_linear_model_round_trips_through_netcdf(tmp_path):
         np.testing.assert_array_equal(getattr(again, name), getattr(model, name))
 
 
+def test_a_linear_model_without_radiation_states_round_trips_through_netcdf(tmp_path):
+    from wecss.results import open_result, save
+    from wecss.sim import LinearModel
+
+    model = linearize(compile_scene(scene("m4-111", radiation={"method": "none"}, outputs={"variables": ["pto"]})))
+    assert model.radiation.A.shape == (0, 0)
+    again = LinearModel.from_dataset(open_result(save(model.to_dataset(), tmp_path / "linear.nc")))
+    for name in ("A", "B", "C", "D"):
+        np.testing.assert_array_equal(
+            np.asarray(getattr(again.state_space, name)), np.asarray(getattr(model.state_space, name))
+        )
+    assert again.radiation.A.shape == (0, 0) and again.radiation.dofs == model.radiation.dofs
+    for name in ("mass", "damping", "stiffness", "pto_jacobian", "hydro_jacobian"):
+        np.testing.assert_array_equal(getattr(again, name), getattr(model, name))
+
+
 def test_modal_table_periods_are_roots_of_the_undamped_impedance():
     """At every finite natural period, K - omega^2 (M* + Bw'(A(omega) - A_inf) Bw) is singular."""
     from wecss.compiled import interpolate_matrices

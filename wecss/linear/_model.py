@@ -486,11 +486,12 @@ class LinearModel:
             outputs=[str(s) for s in ds.output.values],
             name=str(ds.attrs.get("title", "linear model")),
         )
+        n_r, n_h = ds.sizes.get("radiation_state", 0), ds.sizes.get("hydro_dof", 0)  # either may be absent (none)
         rad = RadiationStateSpace(
-            ds.radiation_A.values.reshape(ds.sizes.get("radiation_state", 0), -1),
-            ds.radiation_B.values.reshape(ds.sizes.get("radiation_state", 0), ds.sizes["hydro_dof"]),
-            ds.radiation_C.values.reshape(ds.sizes["hydro_dof"], ds.sizes.get("radiation_state", 0)),
-            tuple(str(d) for d in ds.hydro_dof.values),
+            ds.radiation_A.values.reshape(n_r, n_r),
+            ds.radiation_B.values.reshape(n_r, n_h),
+            ds.radiation_C.values.reshape(n_h, n_r),
+            tuple(str(d) for d in ds.hydro_dof.values) if "hydro_dof" in ds.coords else (),
             str(ds.attrs.get("radiation_method", "given")),
         )
         hydro = HydroResponse(ds.omega.values, ds.hydro_added_mass.values, ds.hydro_damping.values)
