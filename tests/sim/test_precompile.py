@@ -1,5 +1,5 @@
-"""``wecss precompile``: its scenes are valid scenes that name every time-stepping runner with a compiled loop, bad
-job counts are refused, and without numba it compiles nothing and says so."""
+"""``wecss precompile``: its scenes are valid scenes that name every runner that calls the compiled kernels, bad job
+counts are refused, and without numba it compiles nothing and says so."""
 
 from __future__ import annotations
 
@@ -16,9 +16,10 @@ def test_the_scenes_compile_and_cover_the_runners_with_compiled_loops():
         sc = Scene.from_dict(pc.PRECOMPILED[name])
         compile_scene(sc)  # a scene the runner takes (its checks run here)
         named.add(sc.solver.method)
-    loops = {"beeman", "beeman-explicit", "rk4", "generalized-alpha"}  # the runners whose loops numba compiles
-    assert loops <= set(available_runners())
-    assert named == loops
+    # the runners whose loops numba compiles, and those that call the compiled equations from Python
+    compiled = {"beeman", "beeman-explicit", "rk4", "generalized-alpha", "linear", "reference"}
+    assert compiled <= set(available_runners())
+    assert named == compiled
 
 
 @pytest.mark.parametrize("jobs", [0, -1, 1.5, True, "2"])

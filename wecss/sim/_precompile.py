@@ -44,9 +44,12 @@ PRECOMPILED: dict[str, dict[str, Any]] = {
     "beeman, body-exact": _scene(solver={"method": "beeman"}, hydrodynamics=_NONLINEAR),
     "rk4, body-exact": _scene(solver={"method": "rk4"}, hydrodynamics=_NONLINEAR),
     "generalized-alpha, body-exact": _scene(solver={"method": "generalized-alpha"}, hydrodynamics=_NONLINEAR),
+    "linear": _scene(solver={"method": "linear"}),
+    "reference": _scene(solver={"method": "reference"}),
 }
 """The scenes :func:`precompile` runs, by name (``Scene.from_dict``'s input): a few steps of each runner whose time
-loop numba compiles, with linear and with body-exact hydrodynamics."""
+loop numba compiles, with linear and with body-exact hydrodynamics, and of the runners that call the compiled
+equations from Python (the linear model's linearisation, the reference solver)."""
 
 
 def precompile(jobs: int = 2, progress: bool = True) -> dict[str, float]:
