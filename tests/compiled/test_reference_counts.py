@@ -4,6 +4,8 @@ Workspace tuples count up and down on every evaluation (40 % of a step before is
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -39,3 +41,42 @@ def test_the_per_step_kernels_count_few_references():
         assert irs and all("define" in ir for ir in irs), f"{name}: no LLVM IR to count in"
         counts = [ir.count("call void @NRT_incref") for ir in irs]
         assert max(counts) <= LIMITS[name], f"{name}: {counts} NRT_incref calls (at most {LIMITS[name]})"
+
+
+ELASTIC_LIMITS = {"configure_elastic": 150, "respond_elastic": 120}
+"""``NRT_incref`` calls in the flexible bodies' kernels, the elastic NOTC arm (measured: configure_elastic 136,
+respond_elastic 104; 577 and 333 when their helpers read the Plant and Workspace after their first opaque call,
+docs/architecture.md). Their helpers that stay calls count their own arguments' references."""
+
+
+@pytest.mark.slow  # (compiles both kernels afresh: about a minute)
+@pytest.mark.skipif(not JIT, reason="counts the references of numba-compiled code")
+def test_the_elastic_kernels_read_the_tuples_before_their_calls(tmp_path):
+    from importlib import resources
+
+    import wecss.hydro
+    from wecss.compiled.kernels import configure_elastic, respond_elastic
+
+    if "notc-10kw" not in wecss.hydro.available():
+        pytest.skip("shipped database notc-10kw not generated yet")
+    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
+    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
+    spec = tmp_path / "notc-elastic.toml"
+    spec.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic" }'))
+    compiled = compile_plant(scene(str(spec)))
+    p, w = compiled.plant, workspace(compiled.plant)
+    assert p.n_elastic > 0
+    configure(p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)
+    fresh = {"configure_elastic": _fresh(configure_elastic), "respond_elastic": _fresh(respond_elastic)}
+    fresh["configure_elastic"](p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)
+    n_h = p.hydro_index.size
+    fresh["respond_elastic"](p, np.zeros(p.twists.shape[0]), np.zeros((n_h, n_h)), np.zeros(p.pto_kind.size), w)
+    for name, kernel in fresh.items():
+        irs = list(kernel.inspect_llvm().values())
+        assert irs and all("define" in ir for ir in irs), f"{name}: no LLVM IR to count in"
+        # the kernel's own body: its callees' bodies are linked into the IR too
+        own = [re.search(rf"define [^@]*@\S*{name}\S*\((.*?)^}}", ir, re.S | re.M) for ir in irs]
+        counts = [m.group(0).count("call void @NRT_incref") for m in own if m]
+        assert counts, f"{name}: its body not found in the IR"
+        limit = ELASTIC_LIMITS[name]
+        assert max(counts) <= limit, f"{name}: {counts} NRT_incref calls (at most {limit})"

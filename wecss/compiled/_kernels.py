@@ -275,22 +275,38 @@ def workspace(p: Plant) -> Workspace:
 def place(p: Plant, q: np.ndarray, w: Workspace, elastic: bool) -> None:
     """The configuration part of the kinematics: rot, trans, pos, the world twists ``cols`` and B, into ``w`` (a
     generalised mode's row of B: the identity on its column); ``elastic``: the plant has flexible bodies (a
-    constant in the per-step kernels, so that the rigid ones compile without their code, see :func:`configure`)."""
-    n = p.com0.shape[0]
-    nv = p.twists.shape[0]
-    rot, cols, b, tmp = w.rot, w.cols, w.b, w.vec
+    constant in the per-step kernels, so that the rigid ones compile without their code, see :func:`configure`):
+    :func:`_place` on their arrays."""
+    _place(
+        p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, p.com0, p.chain, p.cart_start,
+        p.mode_row, p.cart_column, q, w.rot, w.trans, w.pos, w.cols, w.b, w.vec, w.vec2, w.t_step, w.r_step, w.r_new,
+        elastic, p.elastic_index, p.elastic_data, w.elastic,
+    )  # fmt: skip
+
+
+@inline_kernel
+def _place(
+    order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, q_start: np.ndarray, n_cols: np.ndarray,
+    free: np.ndarray, joint_twists: np.ndarray, com0: np.ndarray, chain: np.ndarray, cart_start: np.ndarray,
+    mode_row: np.ndarray, cart_column: np.ndarray, q: np.ndarray, rot: np.ndarray, trans: np.ndarray, pos: np.ndarray,
+    cols: np.ndarray, b: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray, t_step: np.ndarray, r_step: np.ndarray,
+    r_new: np.ndarray, elastic: bool, el_index: np.ndarray, el_data: np.ndarray, el_work: np.ndarray,
+) -> None:  # fmt: skip
+    """:func:`place` on the arrays of the Plant and the Workspace of the same names (``joint_twists``: the Plant's
+    ``twists``; ``tmp``, ``tmp2``: the Workspace's ``vec``, ``vec2``; the others as in :func:`_frames`)."""
+    n = com0.shape[0]
+    nv = joint_twists.shape[0]
     _frames(
-        p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, p.com0, q, w.rot, w.trans, w.pos,
-        w.cols, w.vec, w.vec2, w.t_step, w.r_step, w.r_new, True, elastic, p.elastic_index, p.elastic_data,
-        w.elastic,
+        order, parent, col_start, q_start, n_cols, free, joint_twists, com0, q, rot, trans, pos, cols, tmp, tmp2,
+        t_step, r_step, r_new, True, elastic, el_index, el_data, el_work,
     )  # fmt: skip
     # B_i = [[I, -hat(p)], [0, R']] S on the columns that move body i
     for i in range(n):
         r = rot[i]
-        pi = w.pos[i]
-        r0 = p.cart_start[i]
+        pi = pos[i]
+        r0 = cart_start[i]
         for c in range(nv):
-            if p.chain[i, c] == 0.0:
+            if chain[i, c] == 0.0:
                 for a in range(6):
                     b[r0 + a, c] = 0.0
                 continue
@@ -299,13 +315,13 @@ def place(p: Plant, q: np.ndarray, w: Workspace, elastic: bool) -> None:
             for a in range(3):
                 b[r0 + a, c] = s[a] - tmp[a]
                 b[r0 + 3 + a, c] = r[0, a] * s[3] + r[1, a] * s[4] + r[2, a] * s[5]
-    for k in range(p.mode_row.shape[0]):  # a generalised mode: the rate of its own coordinate
-        row = p.mode_row[k]
+    for k in range(mode_row.shape[0]):  # a generalised mode: the rate of its own coordinate
+        row = mode_row[k]
         for c in range(nv):
             b[row, c] = 0.0
-        b[row, p.cart_column[row]] = 1.0
+        b[row, cart_column[row]] = 1.0
     if elastic:
-        _place_elastic(p.elastic_index, p.elastic_data, w.elastic, w.rot, w.pos, p.cart_start, b, tmp)
+        _place_elastic(el_index, el_data, el_work, rot, pos, cart_start, b, tmp)
 
 
 @step_kernel
@@ -486,20 +502,37 @@ def _elastic_centre(
 @inline_kernel
 def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
     """The velocity part of the kinematics at the configuration in ``w`` (:func:`place`): spatial twists, dS/dt,
-    body angular velocities, CoM velocities and Bdot v, into ``w``."""
-    n = p.com0.shape[0]
-    nv = p.twists.shape[0]
-    cols, cols_dot, vel = w.cols, w.cols_dot, w.partial
-    tmp, tmp2 = w.vec, w.vec2
+    body angular velocities, CoM velocities and Bdot v, into ``w`` (:func:`_velocities` on their arrays)."""
+    _velocities(
+        p.order, p.parent, p.col_start, p.free, p.n_cols, p.chain, p.cart_start, v, w.rot, w.pos, w.cols, w.cols_dot,
+        w.spatial, w.omega, w.lin, w.bias, w.partial, w.vec, w.vec2, w.t_step, elastic, p.elastic_index,
+        p.elastic_data, w.elastic,
+    )  # fmt: skip
+
+
+@inline_kernel
+def _velocities(
+    order: np.ndarray, parent: np.ndarray, col_start: np.ndarray, free: np.ndarray, n_cols: np.ndarray,
+    chain: np.ndarray, cart_start: np.ndarray, v: np.ndarray, rot: np.ndarray, pos: np.ndarray, cols: np.ndarray,
+    cols_dot: np.ndarray, spatial: np.ndarray, omega: np.ndarray, lin: np.ndarray, bias: np.ndarray,
+    vel: np.ndarray, tmp: np.ndarray, tmp2: np.ndarray, scratch: np.ndarray, elastic: bool, el_index: np.ndarray,
+    el_data: np.ndarray, el_work: np.ndarray,
+) -> None:  # fmt: skip
+    """:func:`move` on the arrays of the Plant and the Workspace of the same names (``vel`` (6,): the Workspace's
+    ``partial``; ``tmp``, ``tmp2``, ``scratch`` (3,): its ``vec``, ``vec2``, ``t_step``; ``elastic``, ``el_index``,
+    ``el_data``, ``el_work``: see :func:`_frames`). It takes the arrays, not the tuples: a tuple's array read in a
+    loop is a reference count up and down per pass that numba cannot prune in the flexible bodies' kernels."""
+    n = order.shape[0]
+    nv = chain.shape[1]
     for idx in range(n):
-        i = p.order[idx]
-        par = p.parent[i]
-        iv = p.col_start[i]
-        if p.free[i] == 1:  # dS/dt of a free base: its translation columns are constant
+        i = order[idx]
+        par = parent[i]
+        iv = col_start[i]
+        if free[i] == 1:  # dS/dt of a free base: its translation columns are constant
             # rotation column b: with c = R (w_b x e_b), (v x R e_b + p x c, c), i.e. hat(v) R + hat(p) R hat(w_b)
             # and R hat(w_b)
-            r = w.rot[i]
-            pi = w.pos[i]
+            r = rot[i]
+            pi = pos[i]
             wb0, wb1, wb2 = v[iv + 3], v[iv + 4], v[iv + 5]
             for b in range(3):
                 for a in range(6):
@@ -523,11 +556,11 @@ def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
                 vel[a] = total
         else:
             for a in range(6):  # element loops: a slice assignment is a call (and allocates)
-                vel[a] = w.spatial[par, a] if par >= 0 else 0.0
-            att = elastic_of_child(p.elastic_index, i) if elastic else -1
+                vel[a] = spatial[par, a] if par >= 0 else 0.0
+            att = elastic_of_child(el_index, i) if elastic else -1
             if att >= 0:  # on an elastic attachment: the parent's mode columns come first
-                _move_attachment(p.elastic_index, p.elastic_data, w.elastic, att, v, vel, tmp, tmp2)
-            for k in range(p.n_cols[i]):
+                _move_attachment(el_index, el_data, el_work, att, v, vel, tmp, tmp2)
+            for k in range(n_cols[i]):
                 col = iv + k
                 s = cols[:, col]
                 # dS/dt = [V, S]: (w_V x v_S - w_S x v_V, w_V x w_S)
@@ -541,39 +574,37 @@ def move(p: Plant, v: np.ndarray, w: Workspace, elastic: bool) -> None:
                 for a in range(6):
                     vel[a] += s[a] * v[col]
         for a in range(6):
-            w.spatial[i, a] = vel[a]
+            spatial[i, a] = vel[a]
     # per body: CoM velocity, body angular velocity, and Bdot_i v = [-lin x w + A_lin - p x A_ang; R' A_ang] with
     # A = sum over the body's columns of v_c dS_c/dt (the columns' -hat(w_b) R' terms sum to -w_b x w_b = 0)
-    acc = w.partial
+    acc = vel
     for i in range(n):
-        r = w.rot[i]
-        pi = w.pos[i]
-        spatial = w.spatial[i]
-        _cross(pi, spatial[3:], tmp)
+        r = rot[i]
+        pi = pos[i]
+        twist = spatial[i]
+        _cross(pi, twist[3:], tmp)
         for a in range(3):
-            w.lin[i, a] = spatial[a] - tmp[a]
-            w.omega[i, a] = r[0, a] * spatial[3] + r[1, a] * spatial[4] + r[2, a] * spatial[5]
+            lin[i, a] = twist[a] - tmp[a]
+            omega[i, a] = r[0, a] * twist[3] + r[1, a] * twist[4] + r[2, a] * twist[5]
         for a in range(6):
             acc[a] = 0.0
         for c in range(nv):
-            if p.chain[i, c] != 0.0:
+            if chain[i, c] != 0.0:
                 for a in range(6):
                     acc[a] += cols_dot[a, c] * v[c]
         e = -1
-        if elastic:  # (w.t_step: scratch here, free in the velocity part)
-            e = _move_elastic(
-                p.elastic_index, p.elastic_data, w.elastic, i, v, acc, w.rot, w.omega, w.lin, tmp, tmp2, w.t_step
-            )
-        _cross(w.lin[i], spatial[3:], tmp)
+        if elastic:
+            e = _move_elastic(el_index, el_data, el_work, i, v, acc, rot, omega, lin, tmp, tmp2, scratch)
+        _cross(lin[i], twist[3:], tmp)
         _cross(pi, acc[3:], tmp2)
-        r0 = p.cart_start[i]
+        r0 = cart_start[i]
         for a in range(3):  # (a generalised mode's row of Bdot v stays zero)
-            w.bias[r0 + a] = -tmp[a] + acc[a] - tmp2[a]
-            w.bias[r0 + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
+            bias[r0 + a] = -tmp[a] + acc[a] - tmp2[a]
+            bias[r0 + 3 + a] = r[0, a] * acc[3] + r[1, a] * acc[4] + r[2, a] * acc[5]
         if e >= 0:  # Bdot on a flexible body's own mode columns: R hat(w_b) Ct / m
-            _rotate(r, w.t_step, tmp)
+            _rotate(r, scratch, tmp)
             for a in range(3):
-                w.bias[r0 + a] += tmp[a]
+                bias[r0 + a] += tmp[a]
 
 
 @step_kernel
@@ -728,22 +759,25 @@ def world_jacobian(p: Plant, rot: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 @inline_kernel
-def _hydro_jacobian(p: Plant, w: Workspace) -> None:
-    """The hydro DOFs' rows of Bw into ``w.bh`` (world axes: rotational rows are R times B's body-axis rows; the
-    translations' and the modes' rows are B's)."""
-    nv = p.twists.shape[0]
-    hi = p.hydro_index
+def _hydro_jacobian(
+    hi: np.ndarray, cart_body: np.ndarray, cart_axis: np.ndarray, cart_start: np.ndarray, rot: np.ndarray,
+    b: np.ndarray, bh: np.ndarray,
+) -> None:  # fmt: skip
+    """The hydro DOFs' rows of Bw into ``bh`` (world axes: rotational rows are R times B's body-axis rows; the
+    translations' and the modes' rows are B's; ``hi`` the Plant's ``hydro_index``, the others as in the Plant and
+    the Workspace)."""
+    nv = b.shape[1]
     for k in range(hi.shape[0]):
-        i = p.cart_body[hi[k]]
-        a = p.cart_axis[hi[k]]
+        i = cart_body[hi[k]]
+        a = cart_axis[hi[k]]
         if a < 3 or a >= 6:
             for c in range(nv):
-                w.bh[k, c] = w.b[hi[k], c]
+                bh[k, c] = b[hi[k], c]
         else:
-            r = w.rot[i]
-            r3 = p.cart_start[i] + 3
+            r = rot[i]
+            r3 = cart_start[i] + 3
             for c in range(nv):
-                w.bh[k, c] = r[a - 3, 0] * w.b[r3, c] + r[a - 3, 1] * w.b[r3 + 1, c] + r[a - 3, 2] * w.b[r3 + 2, c]
+                bh[k, c] = r[a - 3, 0] * b[r3, c] + r[a - 3, 1] * b[r3 + 1, c] + r[a - 3, 2] * b[r3 + 2, c]
 
 
 @inline_kernel
@@ -762,23 +796,27 @@ def _end_point(rot: np.ndarray, pos: np.ndarray, body: int, point: np.ndarray) -
 
 @inline_kernel
 def _pto_strokes_into(
-    p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np.ndarray, x: np.ndarray, gmat: np.ndarray
-) -> None:
-    """PTO strokes (n_pto,) [m or rad] into ``x`` and transmissions (n_pto, nv) into ``gmat`` (x_dot = G v).
+    kind: np.ndarray, coordinate: np.ndarray, velocity: np.ndarray, body_a: np.ndarray, body_b: np.ndarray,
+    point_a: np.ndarray, point_b: np.ndarray, cart_start: np.ndarray, q: np.ndarray, rot: np.ndarray, pos: np.ndarray,
+    b: np.ndarray, x: np.ndarray, gmat: np.ndarray,
+) -> None:  # fmt: skip
+    """PTO strokes (n_pto,) [m or rad] into ``x`` and transmissions (n_pto, nv) into ``gmat`` (x_dot = G v), from
+    the Plant's ``pto_kind``, ``pto_coordinate``, ``pto_velocity``, ``pto_body_a``, ``pto_body_b``,
+    ``pto_point_a``, ``pto_point_b`` (``kind`` ... ``point_b``) and ``cart_start``.
 
     An actuator's rate is n . (J_a - J_b) v with n the unit vector from end b to end a and J_e the Jacobian of
     end e's velocity: per column, the body's CoM velocity column minus R (point x its body-axis angular velocity
     column)."""
     nv = b.shape[1]
-    for k in range(p.pto_kind.shape[0]):
-        if p.pto_kind[k] == PtoKind.JOINT:
-            x[k] = q[p.pto_coordinate[k]]
+    for k in range(kind.shape[0]):
+        if kind[k] == PtoKind.JOINT:
+            x[k] = q[coordinate[k]]
             for c in range(nv):
                 gmat[k, c] = 0.0
-            gmat[k, p.pto_velocity[k]] = 1.0
+            gmat[k, velocity[k]] = 1.0
         else:
-            a0, a1, a2 = _end_point(rot, pos, p.pto_body_a[k], p.pto_point_a[k])
-            b0, b1, b2 = _end_point(rot, pos, p.pto_body_b[k], p.pto_point_b[k])
+            a0, a1, a2 = _end_point(rot, pos, body_a[k], point_a[k])
+            b0, b1, b2 = _end_point(rot, pos, body_b[k], point_b[k])
             d0, d1, d2 = a0 - b0, a1 - b1, a2 - b2
             length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
             x[k] = length
@@ -786,12 +824,12 @@ def _pto_strokes_into(
             for c in range(nv):
                 g = 0.0
                 for e in range(2):
-                    body = p.pto_body_a[k] if e == 0 else p.pto_body_b[k]
+                    body = body_a[k] if e == 0 else body_b[k]
                     if body < 0:
                         continue
-                    point = p.pto_point_a[k] if e == 0 else p.pto_point_b[k]
+                    point = point_a[k] if e == 0 else point_b[k]
                     r = rot[body]
-                    r0 = p.cart_start[body]
+                    r0 = cart_start[body]
                     w0, w1, w2 = b[r0 + 3, c], b[r0 + 4, c], b[r0 + 5, c]
                     y0 = point[1] * w2 - point[2] * w1
                     y1 = point[2] * w0 - point[0] * w2
@@ -810,7 +848,10 @@ def pto_strokes(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray, b: np
     n_pto = p.pto_kind.shape[0]
     x = np.zeros(n_pto)
     gmat = np.zeros((n_pto, b.shape[1]))
-    _pto_strokes_into(p, q, rot, pos, b, x, gmat)
+    _pto_strokes_into(
+        p.pto_kind, p.pto_coordinate, p.pto_velocity, p.pto_body_a, p.pto_body_b, p.pto_point_a, p.pto_point_b,
+        p.cart_start, q, rot, pos, b, x, gmat,
+    )  # fmt: skip
     if p.n_elastic > 0:
         work = np.zeros(elastic_work_size(p.elastic_index))
         _elastic_pto_ends(
@@ -935,45 +976,38 @@ def _elastic_pto_ends(
 
 @inline_kernel
 def _hydrostatic_into(
-    p: Plant,
-    q: np.ndarray,
-    rot: np.ndarray,
-    pos: np.ndarray,
-    disp: np.ndarray,
-    restoring: np.ndarray,
-    rv: np.ndarray,
-    out: np.ndarray,
-    elastic: bool,
-    el_work: np.ndarray,
-) -> None:
+    hi: np.ndarray, cart_body: np.ndarray, cart_axis: np.ndarray, cart_coordinate: np.ndarray, com0: np.ndarray,
+    static_force: np.ndarray, hydrostatic_stiffness: np.ndarray, modes: np.ndarray, mode_stiffness: np.ndarray,
+    q: np.ndarray, rot: np.ndarray, pos: np.ndarray, disp: np.ndarray, restoring: np.ndarray, rv: np.ndarray,
+    out: np.ndarray, elastic: bool, el_index: np.ndarray, el_data: np.ndarray, el_work: np.ndarray,
+) -> None:  # fmt: skip
     """Gravity, buoyancy, the linear hydrostatic and mooring restoring force (world axes) and the modes' structural
     stiffness (a flexible body's geometric stiffening with it) into ``out`` (n_cart,) [N, N m, J] at configuration
-    ``q`` (``disp`` and ``restoring`` (n_h,) and ``rv`` (3,) are scratch; ``el_work`` the Workspace's ``elastic``,
-    scratch too)."""
-    hi = p.hydro_index
+    ``q`` (``hi`` the Plant's ``hydro_index``, ``modes`` its ``mode_row``, the others as in the Plant; ``disp`` and
+    ``restoring`` (n_h,) and ``rv`` (3,) are scratch; ``elastic``, ``el_index``, ``el_data``, ``el_work``: see
+    :func:`_frames`, ``el_work`` scratch too)."""
     for k in range(hi.shape[0]):
-        i = p.cart_body[hi[k]]
-        a = p.cart_axis[hi[k]]
+        i = cart_body[hi[k]]
+        a = cart_axis[hi[k]]
         if a < 3:
-            disp[k] = pos[i, a] - p.com0[i, a]
+            disp[k] = pos[i, a] - com0[i, a]
         elif a < 6:
             so3_log_into(rot[i], rv)
             disp[k] = rv[a - 3]
         else:  # a generalised mode: its coordinate
-            disp[k] = q[p.cart_coordinate[hi[k]]]
+            disp[k] = q[cart_coordinate[hi[k]]]
     for k in range(out.shape[0]):
-        out[k] = p.static_force[k]
-    matvec(p.hydrostatic_stiffness, disp, restoring)
+        out[k] = static_force[k]
+    matvec(hydrostatic_stiffness, disp, restoring)
     for k in range(hi.shape[0]):
         out[hi[k]] -= restoring[k]
-    modes = p.mode_row
     for k in range(modes.shape[0]):  # the modes' structural stiffness, -K xi
         s = 0.0
         for j in range(modes.shape[0]):
-            s += p.mode_stiffness[k, j] * q[p.cart_coordinate[modes[j]]]
+            s += mode_stiffness[k, j] * q[cart_coordinate[modes[j]]]
         out[modes[k]] -= s
     if elastic:
-        _geometric_into(p.elastic_index, p.elastic_data, el_work, q, out)
+        _geometric_into(el_index, el_data, el_work, q, out)
 
 
 @step_kernel
@@ -1012,7 +1046,11 @@ def hydrostatic_force(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray)
     n_h = p.hydro_index.shape[0]
     out = np.empty(p.static_force.shape[0])
     work = np.zeros(elastic_work_size(p.elastic_index))
-    _hydrostatic_into(p, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out, p.n_elastic > 0, work)
+    _hydrostatic_into(
+        p.hydro_index, p.cart_body, p.cart_axis, p.cart_coordinate, p.com0, p.static_force, p.hydrostatic_stiffness,
+        p.mode_row, p.mode_stiffness, q, rot, pos, np.empty(n_h), np.empty(n_h), np.empty(3), out, p.n_elastic > 0,
+        p.elastic_index, p.elastic_data, work,
+    )  # fmt: skip
     return out
 
 
@@ -1020,9 +1058,16 @@ def hydrostatic_force(p: Plant, q: np.ndarray, rot: np.ndarray, pos: np.ndarray)
 def end_stop(p: Plant, k: int, x: float, xdot: float) -> float:
     """Force of PTO k's end stop [N or N m] at stroke ``x`` and rate ``xdot``: a spring on the stroke beyond the
     limit and a damper while engaged; zero inside the limit and for a PTO without an end stop."""
-    excess = abs(x) - p.pto_stroke_limit[k]
-    if excess > 0.0 and p.pto_stop_stiffness[k] > 0.0:
-        return -np.sign(x) * p.pto_stop_stiffness[k] * excess - p.pto_stop_damping[k] * xdot
+    return _end_stop(p.pto_stroke_limit[k], p.pto_stop_stiffness[k], p.pto_stop_damping[k], x, xdot)
+
+
+@inline_kernel
+def _end_stop(limit: float, stiffness: float, damping: float, x: float, xdot: float) -> float:
+    """:func:`end_stop` from the PTO's stroke limit [m or rad], the stop's stiffness [N/m or N m/rad] and damping
+    [N s/m or N m s/rad]."""
+    excess = abs(x) - limit
+    if excess > 0.0 and stiffness > 0.0:
+        return -np.sign(x) * stiffness * excess - damping * xdot
     return 0.0
 
 
@@ -1080,47 +1125,66 @@ def configure_elastic(p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float
 def _configure_body(
     p: Plant, q: np.ndarray, hydro_force: np.ndarray, t: float, w: Workspace, elastic: bool
 ) -> bool:  # fmt: skip
-    """The body of :func:`configure_core` (``elastic`` False) and :func:`configure_elastic` (True)."""
-    place(p, q, w, elastic)
-    _hydro_jacobian(p, w)
+    """The body of :func:`configure_core` (``elastic`` False) and :func:`configure_elastic` (True). Every array of
+    the tuples it needs is bound first and the tuples are not read after (see :func:`_respond_body`)."""
+    com0, cart_start, cart_body, cart_axis, cart_column = p.com0, p.cart_start, p.cart_body, p.cart_axis, \
+        p.cart_column  # fmt: skip
+    hi, act, active_mass, pto_rest, viscous = p.hydro_index, p.active, p.active_mass, p.pto_rest, p.viscous
+    el_index, el_data, el_work = p.elastic_index, p.elastic_data, w.elastic
+    pto_body_a, pto_body_b, pto_point_a, pto_point_b = p.pto_body_a, p.pto_body_b, p.pto_point_a, p.pto_point_b
+    rot, pos, b, bh, force, gen_config, stroke, gmat, bat = w.rot, w.pos, w.b, w.bh, w.force, w.gen_config, \
+        w.stroke, w.gmat, w.bat  # fmt: skip
+    mass_work, mass, factor, tmp, r_step, terms = w.mass_work, w.mass, w.factor, w.vec, w.r_step, w.terms
+    cart_coordinate, static_force, stiffness = p.cart_coordinate, p.static_force, p.hydrostatic_stiffness
+    mode_row, mode_stiffness, pto_kind, pto_coordinate, pto_velocity = p.mode_row, p.mode_stiffness, p.pto_kind, \
+        p.pto_coordinate, p.pto_velocity  # fmt: skip
+    disp, restoring = w.disp, w.restoring
+    _place(
+        p.order, p.parent, p.col_start, p.q_start, p.n_cols, p.free, p.twists, com0, p.chain, cart_start,
+        mode_row, cart_column, q, rot, w.trans, pos, w.cols, b, tmp, w.vec2, w.t_step, r_step, w.r_new, elastic,
+        el_index, el_data, el_work,
+    )  # fmt: skip
+    _hydro_jacobian(hi, cart_body, cart_axis, cart_start, rot, b, bh)
     # world loads: gravity, buoyancy, hydrostatics and the given hydro force; through Bw, that is B with the
     # moments in body axes
-    force = w.force
-    _hydrostatic_into(p, q, w.rot, w.pos, w.disp, w.restoring, w.vec, force, elastic, w.elastic)
-    hi = p.hydro_index
+    _hydrostatic_into(
+        hi, cart_body, cart_axis, cart_coordinate, com0, static_force, stiffness, mode_row, mode_stiffness, q, rot,
+        pos, disp, restoring, tmp, force, elastic, el_index, el_data, el_work,
+    )  # fmt: skip
     for k in range(hi.shape[0]):
         force[hi[k]] += hydro_force[k]
-    configure_viscous(p.viscous, t, w.rot, w.pos, p.cart_start, w.terms, force)
-    for i in range(p.com0.shape[0]):
-        r3 = p.cart_start[i] + 3
-        _rotate(w.rot[i].T, force[r3 : r3 + 3], w.vec)
+    configure_viscous(viscous, t, rot, pos, cart_start, terms, force)
+    for i in range(com0.shape[0]):
+        r3 = cart_start[i] + 3
+        _rotate(rot[i].T, force[r3 : r3 + 3], tmp)
         for a in range(3):
-            force[r3 + a] = w.vec[a]
-    for c in range(w.gen_config.shape[0]):
-        w.gen_config[c] = 0.0
-    matvec_t_add(w.b, force, w.gen_config)
-    _pto_strokes_into(p, q, w.rot, w.pos, w.b, w.stroke, w.gmat)
+            force[r3 + a] = tmp[a]
+    for c in range(gen_config.shape[0]):
+        gen_config[c] = 0.0
+    matvec_t_add(b, force, gen_config)
+    _pto_strokes_into(
+        pto_kind, pto_coordinate, pto_velocity, pto_body_a, pto_body_b, pto_point_a, pto_point_b, cart_start, q, rot,
+        pos, b, stroke, gmat,
+    )  # fmt: skip
     if elastic:  # an actuator's end on a flexible body rides on its node
         _elastic_pto_ends(
-            p.elastic_index, p.elastic_data, w.elastic, q, w.rot, w.pos, w.b, p.com0, p.cart_start, p.pto_body_a,
-            p.pto_body_b, p.pto_point_a, p.pto_point_b, w.stroke, w.gmat,
-            reshaped(elastic_work(p.elastic_index, w.elastic).none, (0, 2, 3)),
+            el_index, el_data, el_work, q, rot, pos, b, com0, cart_start, pto_body_a, pto_body_b, pto_point_a,
+            pto_point_b, stroke, gmat, reshaped(el_work[0:0], (0, 2, 3)),
         )  # fmt: skip
-    for k in range(w.stroke.shape[0]):
-        w.stroke[k] -= p.pto_rest[k]
-    act = p.active
+    for k in range(stroke.shape[0]):
+        stroke[k] -= pto_rest[k]
     for k in range(act.shape[0]):  # only the Cartesian rows that can move (x, z and pitch of a planar device)
-        for c in range(w.bat.shape[0]):
-            w.bat[c, k] = w.b[act[k], c]
+        for c in range(bat.shape[0]):
+            bat[c, k] = b[act[k], c]
     if not elastic:
         # last, and a kernel of its own: inlined here, its loops keep numba from pruning the reference counts of
         # the tuples' arrays (measured, not understood); a call as the last statement costs only its own
         # arguments' counts
-        return _factor_mass(w.bat, p.active_mass, w.mass_work, w.mass, w.factor)
+        return _factor_mass(bat, active_mass, mass_work, mass, factor)
     # flexible bodies: M(xi) in place of M(0)
     return _elastic_mass(
-        p.elastic_index, p.elastic_data, w.elastic, q, p.active_mass, w.b, act, p.cart_axis, p.cart_column,
-        w.mass_work, w.mass, w.factor, w.vec, w.r_step,
+        el_index, el_data, el_work, q, active_mass, b, act, cart_axis, cart_column, mass_work, mass, factor, tmp,
+        r_step,
     )  # fmt: skip
 
 
@@ -1323,62 +1387,75 @@ def _respond_body(
     command : (n_pto,)
         Controller force held over the step [N or N m] (added to the device spring and the linear gains).
     """
-    move(p, v, w, elastic)
-    act = p.active
+    # Every array of the tuples this needs is bound first, and the tuples are not read after: numba counts a
+    # reference up on each of their arrays on entry and down after their last read, and cannot prune those counts
+    # across a call it does not inline (the flexible bodies' helpers), nor a tuple's array read in a loop.
+    act, cart_axis, cart_body, cart_column, inertia = p.active, p.cart_axis, p.cart_body, p.cart_column, p.inertia
+    active_mass, joint_damping, modes, mode_damping = p.active_mass, p.joint_damping, p.mode_row, p.mode_damping
+    mooring_damping, viscous, cart_start = p.mooring_damping, p.viscous, p.cart_start
+    pto_damping, pto_stiffness, pto_force_limit, pto_spring = p.pto_damping, p.pto_stiffness, p.pto_force_limit, \
+        p.pto_spring  # fmt: skip
+    stroke_limit, stop_stiffness, stop_damping = p.pto_stroke_limit, p.pto_stop_stiffness, p.pto_stop_damping
+    el_index, el_data, el_work = p.elastic_index, p.elastic_data, w.elastic
+    rot, pos, lin, bias, omega, inertial, gen, tmp, tmp2 = w.rot, w.pos, w.lin, w.bias, w.omega, w.inertial, w.gen, \
+        w.vec, w.vec2  # fmt: skip
+    gen_config, bat, u, load, bh, b, terms, factor, acc = w.gen_config, w.bat, w.u, w.load, w.bh, w.b, w.terms, \
+        w.factor, w.acc  # fmt: skip
+    stroke, xdot, f, gmat = w.stroke, w.xdot, w.f, w.gmat
+    _velocities(
+        p.order, p.parent, p.col_start, p.free, p.n_cols, p.chain, cart_start, v, rot, pos, w.cols, w.cols_dot,
+        w.spatial, omega, lin, bias, w.partial, tmp, tmp2, w.t_step, elastic, el_index, el_data, el_work,
+    )  # fmt: skip
     m = act.shape[0]
     # N* v = B' ((M + A_inf) Bdot v + D M B v); D M B v = omega_b x (J omega_b) on the rotational rows (none on the
     # rows of generalised modes); a flexible body's M(xi) and its quadratic-velocity vector instead
     if elastic:
         _elastic_inertial(
-            p.elastic_index, p.elastic_data, w.elastic, act, w.bias, p.cart_axis, p.cart_body, p.inertia, w.omega, v,
-            w.vec, w.vec2, w.inertial,
-        )  # fmt: skip
+            el_index, el_data, el_work, act, bias, cart_axis, cart_body, inertia, omega, v, tmp, tmp2, inertial
+        )
     for k in range(0 if elastic else m):
         s = 0.0
         for j in range(m):
-            s += p.active_mass[k, j] * w.bias[act[j]]
+            s += active_mass[k, j] * bias[act[j]]
         row = act[k]
-        axis = p.cart_axis[row]
+        axis = cart_axis[row]
         if axis >= 3 and axis < 6:
-            i = p.cart_body[row]
-            _rotate(p.inertia[i], w.omega[i], w.vec)
-            _cross(w.omega[i], w.vec, w.vec2)
-            s += w.vec2[axis - 3]
-        w.inertial[k] = -s
-    gen = w.gen
+            i = cart_body[row]
+            _rotate(inertia[i], omega[i], tmp)
+            _cross(omega[i], tmp, tmp2)
+            s += tmp2[axis - 3]
+        inertial[k] = -s
     for c in range(gen.shape[0]):
-        gen[c] = w.gen_config[c]
-    matvec_add(w.bat, w.inertial, gen)
+        gen[c] = gen_config[c]
+    matvec_add(bat, inertial, gen)
     for c in range(gen.shape[0]):
-        gen[c] -= p.joint_damping[c] * v[c]  # the joints' own losses
-    modes = p.mode_row
+        gen[c] -= joint_damping[c] * v[c]  # the joints' own losses
     for k in range(modes.shape[0]):  # the modes' structural damping, -C xi_dot
         s = 0.0
         for j in range(modes.shape[0]):
-            s += p.mode_damping[k, j] * v[p.cart_column[modes[j]]]
-        gen[p.cart_column[modes[k]]] -= s
+            s += mode_damping[k, j] * v[cart_column[modes[j]]]
+        gen[cart_column[modes[k]]] -= s
     # the memory force of the newest hydro velocity, through Bw
-    matvec(w.bh, v, w.u)
-    matvec(newest, w.u, w.load)
-    damping = p.mooring_damping  # the moorings' dampers ((0, 0) without moorings: no work)
-    for i in range(damping.shape[0]):
+    matvec(bh, v, u)
+    matvec(newest, u, load)
+    for i in range(mooring_damping.shape[0]):  # the moorings' dampers ((0, 0) without moorings: no work)
         s = 0.0
-        for k in range(damping.shape[1]):
-            s += damping[i, k] * w.u[k]
-        w.load[i] -= s
-    matvec_t_add(w.bh, w.load, gen)
+        for k in range(mooring_damping.shape[1]):
+            s += mooring_damping[i, k] * u[k]
+        load[i] -= s
+    matvec_t_add(bh, load, gen)
     # the controller's force, saturated at the PTO's force limit, the device spring, and the end stops
-    matvec(w.gmat, v, w.xdot)
-    for k in range(w.stroke.shape[0]):
-        x, xdot = w.stroke[k], w.xdot[k]
-        control = pto_control_force_kernel(command[k], p.pto_damping[k], p.pto_stiffness[k], x, xdot)
-        limit = p.pto_force_limit[k]
-        w.f[k] = min(max(control, -limit), limit) - p.pto_spring[k] * x
-        total = w.f[k] + end_stop(p, k, x, xdot)
+    matvec(gmat, v, xdot)
+    for k in range(stroke.shape[0]):
+        x, rate = stroke[k], xdot[k]
+        control = pto_control_force_kernel(command[k], pto_damping[k], pto_stiffness[k], x, rate)
+        limit = pto_force_limit[k]
+        f[k] = min(max(control, -limit), limit) - pto_spring[k] * x
+        total = f[k] + _end_stop(stroke_limit[k], stop_stiffness[k], stop_damping[k], x, rate)
         for c in range(gen.shape[0]):
-            gen[c] += w.gmat[k, c] * total
-    respond_viscous(p.viscous, w.rot, w.lin, w.omega, w.b, p.cart_start, w.terms, gen)  # drag (none: no work)
-    cholesky_solve(w.factor, gen, w.acc)
+            gen[c] += gmat[k, c] * total
+    respond_viscous(viscous, rot, lin, omega, b, cart_start, terms, gen)  # drag (none: no work)
+    cholesky_solve(factor, gen, acc)
 
 
 @step_kernel
@@ -1499,7 +1576,7 @@ def hydro_velocity(p: Plant, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Velocities of the hydro DOFs (world axes) [m/s, rad/s]."""
     w = workspace(p)
     place(p, q, w, p.n_elastic > 0)
-    _hydro_jacobian(p, w)
+    _hydro_jacobian(p.hydro_index, p.cart_body, p.cart_axis, p.cart_start, w.rot, w.b, w.bh)
     matvec(w.bh, v, w.u)
     return w.u
 
