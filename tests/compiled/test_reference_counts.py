@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from tests.sim.scenes import scene
+from tests.sim.scenes import elastic_notc_spec, scene
 from wecss.compiled import JIT, compile_plant
 from wecss.compiled.kernels import configure, configure_core, respond_core, workspace
 
@@ -52,18 +52,12 @@ docs/architecture.md). Their helpers that stay calls count their own arguments' 
 @pytest.mark.slow  # (compiles both kernels afresh: about a minute)
 @pytest.mark.skipif(not JIT, reason="counts the references of numba-compiled code")
 def test_the_elastic_kernels_read_the_tuples_before_their_calls(tmp_path):
-    from importlib import resources
-
     import wecss.hydro
     from wecss.compiled.kernels import configure_elastic, respond_elastic
 
     if "notc-10kw" not in wecss.hydro.available():
         pytest.skip("shipped database notc-10kw not generated yet")
-    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
-    spec = tmp_path / "notc-elastic.toml"
-    spec.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic" }'))
-    compiled = compile_plant(scene(str(spec)))
+    compiled = compile_plant(scene(elastic_notc_spec(tmp_path)))
     p, w = compiled.plant, workspace(compiled.plant)
     assert p.n_elastic > 0
     configure(p, compiled.q0, np.zeros(p.hydro_index.size), 0.0, w)

@@ -7,7 +7,6 @@ the structure's deformation, and the refusals."""
 from __future__ import annotations
 
 import dataclasses
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +15,7 @@ import xarray as xr
 
 import wecss.devices
 import wecss.hydro
+from tests.sim.scenes import elastic_notc_spec
 from wecss.control import compile_scene
 from wecss.linear import format_modal_table, modal_table
 from wecss.multibody import kinematics
@@ -103,12 +103,7 @@ def elastic(tmp_path_factory):
     """The NOTC scene with its arm elastic (``dynamics = "elastic"``; generalised-alpha, which takes the arm's
     modes at the wave step) and the same device for ``structural_modes``."""
     _needs("notc-10kw")
-    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
-    assert raw.count(line) == 1
-    path = tmp_path_factory.mktemp("spec") / "notc-elastic.toml"
-    path.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic" }'))
-    compiled = _compiled(str(path), method="generalized-alpha")
+    compiled = _compiled(elastic_notc_spec(tmp_path_factory.mktemp("spec")), method="generalized-alpha")
     device = wecss.devices.load("notc-10kw")
     device = dataclasses.replace(device, flexible={"arm": dataclasses.replace(device.flexible["arm"],
                                                                               dynamics="elastic")})  # fmt: skip
@@ -239,11 +234,8 @@ def test_the_modal_table_with_held_coordinates_is_the_condensed_model_s(tmp_path
     from scipy.linalg import eig
 
     _needs("notc-10kw")
-    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
-    path = tmp_path / "notc-held.toml"
-    path.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic", quasi_static_above = 30 }'))
-    compiled = _compiled(str(path), method="generalized-alpha")
+    spec = elastic_notc_spec(tmp_path, ", quasi_static_above = 30", "notc-held.toml")
+    compiled = _compiled(spec, method="generalized-alpha")
     held = compiled.device.model.quasi_static_velocities
     table = modal_table(compiled, water=water)
     assert table.sizes["mode"] == int(np.count_nonzero(~held)) == 4 and table.converged.values.all()

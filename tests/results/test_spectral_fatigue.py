@@ -426,18 +426,14 @@ def test_the_life_of_the_notc_arm_from_its_stress_transfer_functions(tmp_path):
     1.3e-5) at all 138 fibre points. The lug's stress spectrum |H|^2 S_eta (H interpolated onto d omega 5e-5 rad/s)
     as a long record: Dirlik within 10 % of rainflow (single peak), the narrow band above it. Measured: lug life
     1.51 years (Dirlik; sigma 25 MPa), alpha_2 0.811, Dirlik / rainflow 0.996, narrow band / rainflow 1.034."""
-    from importlib import resources
-
     import wecss.hydro
+    from tests.sim.scenes import elastic_notc_spec
     from wecss.linear import stress_response
     from wecss.sim import Scene, compile_scene
 
     if "notc-10kw" not in wecss.hydro.available():
         pytest.skip("shipped database notc-10kw not generated yet")
-    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
-    path = tmp_path / "notc-elastic.toml"
-    path.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic" }'))
+    path = elastic_notc_spec(tmp_path)
     sea = Jonswap(1.0, 6.2, 3.3)
     run_scene = Scene.from_dict(
         {

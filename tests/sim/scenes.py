@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
+from importlib import resources
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -24,6 +26,20 @@ def scene(device: str = "m4-111", **sections: dict[str, Any]) -> Scene:
     for key, value in sections.items():
         data[key] = {**data.get(key, {}), **value}
     return Scene.from_dict(data)
+
+
+NOTC_FLEXIBLE = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
+"""The NOTC spec's flexible table of its arm."""
+
+
+def elastic_notc_spec(folder: Path, extra: str = "", name: str = "notc-elastic.toml") -> str:
+    """The shipped NOTC spec with its arm elastic (``dynamics = "elastic"`` and ``extra``, e.g.
+    ``", quasi_static_above = 30"``, added to its flexible table), written to ``folder / name``; its path."""
+    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
+    assert raw.count(NOTC_FLEXIBLE) == 1
+    path = Path(folder) / name
+    path.write_text(raw.replace(NOTC_FLEXIBLE, NOTC_FLEXIBLE[:-2] + f', dynamics = "elastic"{extra} }}'))
+    return str(path)
 
 
 def simple_state_space(compiled: CompiledScene) -> RadiationStateSpace:

@@ -24,7 +24,7 @@ import wecss.hydro
 import wecss.sim._quantities as quantities
 from wecss.sim import compile_scene, simulate
 
-from .scenes import scene
+from .scenes import NOTC_FLEXIBLE, elastic_notc_spec, scene
 
 T = 6.2
 SPOTS = ("arm.lug_top", "arm.lug_bottom")
@@ -43,7 +43,7 @@ def elastic_run(tmp_path_factory, request):
     solved by the runner's Newton iteration; the same oracles hold, the balance of the equations with the held
     coordinates' rates and accelerations zero among them)."""
     raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
+    line = NOTC_FLEXIBLE
     assert raw.count(line) == 1
     path = tmp_path_factory.mktemp("spec") / "notc-elastic-24.toml"
     held = ", quasi_static_above = 0" if request.param == "quasi-static" else ""
@@ -161,10 +161,7 @@ def test_the_stress_transfer_functions_are_the_small_wave_run_s_stresses(tmp_pat
     discretisation and transient, is of that order: 6.4e-4 of the motion in test_elastic_runs.py)."""
     from wecss.linear import stress_response
 
-    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
-    path = tmp_path / "notc-elastic.toml"
-    path.write_text(raw.replace(line, line[:-2] + f', dynamics = "elastic"{held} }}'))
+    path = elastic_notc_spec(tmp_path, held)
     sea = {"kind": "regular", "height": 0.02, "period": T, "duration": 12 * T, "ramp": T}
     run_scene = scene(
         str(path), sea=sea, controller={"name": "damping", "parameters": {}},

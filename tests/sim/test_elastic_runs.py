@@ -7,7 +7,6 @@ wave step is the exact frequency-domain solution (the loads of such runs: ``test
 from __future__ import annotations
 
 import re
-from importlib import resources
 
 import numpy as np
 import pytest
@@ -20,7 +19,7 @@ from wecss.multibody import Dynamics
 from wecss.scene import SceneError
 from wecss.sim import compile_scene, linearize
 
-from .scenes import scene
+from .scenes import elastic_notc_spec, scene
 
 T = 6.2
 
@@ -34,12 +33,7 @@ def _database():
 @pytest.fixture(scope="module")
 def elastic_spec(tmp_path_factory) -> str:
     """The NOTC spec with its arm elastic (its flexible table given ``dynamics = "elastic"``)."""
-    raw = (resources.files("wecss") / "data" / "devices" / "notc-10kw.toml").read_text()
-    line = "flexible = { modes = 6, damping_ratio = 0.01, elements = 16 }"
-    assert raw.count(line) == 1
-    path = tmp_path_factory.mktemp("spec") / "notc-elastic.toml"
-    path.write_text(raw.replace(line, line[:-2] + ', dynamics = "elastic" }'))
-    return str(path)
+    return elastic_notc_spec(tmp_path_factory.mktemp("spec"))
 
 
 def _scene(spec: str, method: str, dt: float):
@@ -182,7 +176,7 @@ class _HeldSpringDamper(Controller):
         return pto_control_force(0.0, self.c, self.k, measurement.displacement, measurement.velocity)
 
 
-def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(elastic_spec, tmp_path):
+def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(tmp_path):
     """The arm above 30 Hz held quasi-static, the small regular wave (H 0.02 m, 12 periods): the linear runner
     (``solver.method = "linear"``, the condensed model stepped exactly) against generalised-alpha, the same scene.
     Open loop (the cylinder's damping folded into the model), at dt 0.05 s: over the last two periods the pivot
@@ -199,7 +193,7 @@ def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(elastic
 
     from wecss.sim import simulate
 
-    spec = _held_spec(elastic_spec, tmp_path, 30.0)
+    spec = _held_spec(tmp_path, 30.0)
     sea = {"kind": "regular", "height": 0.02, "period": T, "duration": 12 * T, "ramp": 2 * T}
     kwargs = {"sea": sea, "controller": {"name": "damping", "parameters": {}}, "radiation": {"method": "state_space"},
               "outputs": {"variables": ["motion", "pto"]}}  # fmt: skip
@@ -247,7 +241,7 @@ def test_a_linear_run_with_held_coordinates_is_the_generalised_alpha_run(elastic
         simulate(given)  # the condensed model has no such state: refused, not ignored
 
 
-def test_the_condensed_state_matrix_is_the_jacobian_of_the_held_equations(elastic_spec, tmp_path):
+def test_the_condensed_state_matrix_is_the_jacobian_of_the_held_equations(tmp_path):
     """The arm's coordinates above 30 Hz held quasi-static (the two lowest kept): the linear model's states are the
     kept coordinates, their rates and the radiation states, and its state matrix is the Jacobian of the nonlinear
     equations the generalised-alpha runner solves (the compiled plant's kernels with the held coordinates' rates
@@ -256,7 +250,7 @@ def test_the_condensed_state_matrix_is_the_jacobian_of_the_held_equations(elasti
     the kept coordinates and rates, 1 in the radiation states), to 1e-8 of each block's largest entry. Static
     condensation without the kept accelerations' inertia on the held rows (condensed mass M_rr in place of
     M_rr - K_rh K_hh^-1 M_hr) is farther from it than 1e-5: the test tells them apart."""
-    spec = _held_spec(elastic_spec, tmp_path, 30.0)
+    spec = _held_spec(tmp_path, 30.0)
     compiled = compile_scene(_scene(spec, "generalized-alpha", 0.05))
     model = linearize(compiled, cache=False)
     held = compiled.device.model.quasi_static_velocities
@@ -286,7 +280,7 @@ def test_the_condensed_state_matrix_is_the_jacobian_of_the_held_equations(elasti
     assert wrong > 1e-5
 
 
-def test_the_condensed_model_is_the_full_equations_with_the_held_columns_out(elastic_spec, tmp_path):
+def test_the_condensed_model_is_the_full_equations_with_the_held_columns_out(tmp_path):
     """The condensed state space (arm above 30 Hz held) keeps every coordinate among its outputs: its static gain
     -C A^-1 B + D is the full static solution K^-1 [Bw', G'] of every coordinate, the held ones through the
     feedthrough D (to 1e-12); and its transfer function C (i w - A)^-1 B + D at 0.3, 1 and 3 rad/s is the solution
@@ -300,7 +294,7 @@ def test_the_condensed_model_is_the_full_equations_with_the_held_columns_out(ela
     from wecss.control.design import pto_response
     from wecss.linear import LinearModel
 
-    spec = _held_spec(elastic_spec, tmp_path, 30.0)
+    spec = _held_spec(tmp_path, 30.0)
     model = linearize(compile_scene(_scene(spec, "generalized-alpha", 0.05)), cache=False)
     system, rad, held = model.state_space, model.radiation, model.held
     assert rad is not None and held is not None
@@ -438,17 +432,14 @@ def test_the_cylinder_rides_on_the_arm_s_node_in_the_kernels(elastic_spec):
     assert moved > 1e-4  # the node's elastic displacement changes the stroke: the test can tell
 
 
-def _held_spec(elastic_spec: str, directory, above: float) -> str:
+def _held_spec(directory, above: float) -> str:
     """The elastic NOTC spec with ``quasi_static_above = above`` [Hz] (0: every modal coordinate held; 30: the two
     lowest, near 14 Hz, kept and the rest, from 88 Hz, held)."""
-    raw = open(elastic_spec).read()
-    spec = directory / f"notc-held-{above:g}.toml"
-    spec.write_text(raw.replace('dynamics = "elastic" }', f'dynamics = "elastic", quasi_static_above = {above} }}'))
-    return str(spec)
+    return elastic_notc_spec(directory, f", quasi_static_above = {above}", f"notc-held-{above:g}.toml")
 
 
 @pytest.mark.parametrize("above", [0.0, 30.0])
-def test_a_run_with_the_arm_held_quasi_static_is_the_exact_quasi_static_solution(elastic_spec, tmp_path, above):
+def test_a_run_with_the_arm_held_quasi_static_is_the_exact_quasi_static_solution(tmp_path, above):
     """The arm's modal coordinates held quasi-static: all of them (``quasi_static_above = 0``) or those above
     30 Hz (the two lowest kept). No method named, so generalised-alpha runs at dt 0.05 s (an explicit runner named
     is refused, naming them). The frequency-domain solution (``steady_state``) is the condensed linear model's:
@@ -461,7 +452,7 @@ def test_a_run_with_the_arm_held_quasi_static_is_the_exact_quasi_static_solution
     from wecss.linear import linearize, steady_state
     from wecss.sim import simulate
 
-    spec = _held_spec(elastic_spec, tmp_path, above)
+    spec = _held_spec(tmp_path, above)
     sea = {"kind": "regular", "height": 0.02, "period": T, "duration": 12 * T, "ramp": 2 * T}
     kwargs = {"sea": sea, "controller": {"name": "damping", "parameters": {}}, "radiation": {"method": "state_space"}}
     with pytest.raises(
