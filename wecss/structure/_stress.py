@@ -363,33 +363,32 @@ def _elastic_motion_loads(group: MassGroup, phi: np.ndarray) -> tuple[np.ndarray
     inertia = g.inertias
     eye = np.eye(3)[:, None, :, None]  # eye[k]: e_k as (1, 3, 1)
 
-    def spin(v: np.ndarray) -> np.ndarray:
-        """D v = theta x (J v) - J (theta x v) (p, 3, n) for a constant vector v (1, 3, 1)."""
-        return _cross(theta, np.einsum("pab,xbn->pan", inertia, v)) - np.einsum("pab,pbn->pan", inertia,
-                                                                               _cross(theta, v))  # fmt: skip
+    j_theta = np.einsum("pab,pbn->pan", inertia, theta)
+    j_axis = [np.einsum("pab,xbn->pan", inertia, e) for e in eye]  # J e_k, (p, 3, 1)
+    # spin[k] = D e_k = theta x (J e_k) - J (theta x e_k), (p, 3, n)
+    spin = [_cross(theta, j_e) - np.einsum("pab,pbn->pan", inertia, _cross(theta, e)) for e, j_e in
+            zip(eye, j_axis, strict=True)]  # fmt: skip
 
     forces = np.zeros((u.shape[0], 9, 3, u.shape[2]))
     moments = np.zeros_like(forces)
     for k in range(3):  # alpha_k
         forces[:, k] = -mass * _cross(eye[k], u)
-        moments[:, k] = -spin(eye[k])
+        moments[:, k] = -spin[k]
     for c, (a, b) in enumerate(PAIRS):  # w_a w_b: -w x (w x u) = |w|^2 u - w (w . u), and -w x D w
         if a == b:
             forces[:, 3 + c] = mass * (u - eye[a] * u[:, a : a + 1])
-            moments[:, 3 + c] = -_cross(eye[a], spin(eye[a]))
+            moments[:, 3 + c] = -_cross(eye[a], spin[a])
         else:
             forces[:, 3 + c] = -mass * (eye[a] * u[:, b : b + 1] + eye[b] * u[:, a : a + 1])
-            moments[:, 3 + c] = -_cross(eye[a], spin(eye[b])) - _cross(eye[b], spin(eye[a]))
+            moments[:, 3 + c] = -_cross(eye[a], spin[b]) - _cross(eye[b], spin[a])
     coriolis_forces = np.zeros((u.shape[0], 3, 3, u.shape[2]))
     coriolis_moments = np.zeros_like(coriolis_forces)
     for k in range(3):  # w_k times the rates
         coriolis_forces[:, k] = -2.0 * mass * _cross(eye[k], u)
-        j_theta = np.einsum("pab,pbn->pan", inertia, theta)
         coriolis_moments[:, k] = -(
-            _cross(theta, np.einsum("pab,xbn->pan", inertia, eye[k]))
-            + np.einsum("pab,pbn->pan", inertia, _cross(eye[k], theta))
+            _cross(theta, j_axis[k]) + np.einsum("pab,pbn->pan", inertia, _cross(eye[k], theta))
             + _cross(eye[k], j_theta)
-        )
+        )  # fmt: skip
     motion = np.einsum("pai,pcan->icn", g.nu, forces) + np.einsum("pai,pcan->icn", g.ntheta, moments)
     coriolis = np.einsum("pai,pcan->icn", g.nu, coriolis_forces) + np.einsum("pai,pcan->icn", g.ntheta,
                                                                              coriolis_moments)  # fmt: skip
